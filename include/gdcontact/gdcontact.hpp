@@ -1,0 +1,8 @@
+// Umbrella header of the gdcontact core (no ODE). For the ODE drop-in, include <gdcontact/ode.hpp>.
+#pragma once
+
+#include <gdcontact/collide.hpp>
+#include <gdcontact/manifold.hpp>
+#include <gdcontact/polytope.hpp>
+#include <gdcontact/settings.hpp>
+#include <gdcontact/types.hpp>

@@ -1,0 +1,84 @@
+// A convex polytope in its local frame: vertices, CCW faces with planes, edges and adjacency
+// (its Gauss map), and an interior contraction point. Immutable once built; safe to share
+// between threads.
+#pragma once
+
+#include <gdcontact/settings.hpp>
+#include <gdcontact/types.hpp>
+
+#include <vector>
+
+namespace gdc {
+
+class Polytope {
+public:
+    /// A planar face. Its vertices, counter-clockwise seen from outside, are
+    /// faceVertices()[first .. first + count). Points x inside satisfy normal·x ≤ offset.
+    struct Face {
+        Vec3 normal;
+        double offset;
+        int first;
+        int count;
+    };
+    /// An edge between vertices `tail` and `head`. On the Gauss map it is the arc between the
+    /// normals of its two faces; `leftFace` has the edge tail→head in its CCW order.
+    struct Edge {
+        int tail;
+        int head;
+        int leftFace;
+        int rightFace;
+    };
+
+    /// Convex hull of a point cloud (qhull). Throws InvalidInput for fewer than 4 points, NaN/Inf
+    /// coordinates, or points that are collinear or coplanar (no interior).
+    static Polytope fromPoints(const std::vector<Vec3>& points, const Settings& settings = {});
+    /// From explicit faces, each a list of vertex indices, counter-clockwise seen from outside.
+    /// Validated: closed, consistently wound, convex, planar, non-degenerate; coplanar
+    /// neighbouring faces are merged. Throws InvalidInput naming the offending face otherwise.
+    static Polytope fromFaces(const std::vector<Vec3>& vertices,
+                              const std::vector<std::vector<int>>& faces,
+                              const Settings& settings = {});
+    /// An axis-aligned box centred at the origin. Throws InvalidInput unless every half extent is
+    /// finite and positive.
+    static Polytope box(const Vec3& halfExtents);
+
+    const std::vector<Vec3>& vertices() const { return vertices_; }
+    const std::vector<Face>& faces() const { return faces_; }
+    const std::vector<int>& faceVertices() const { return faceVertices_; }
+    const std::vector<Edge>& edges() const { return edges_; }
+    /// Neighbours of vertex v: neighbors()[neighborOffsets()[v] .. neighborOffsets()[v+1]).
+    const std::vector<int>& neighborOffsets() const { return neighborOffsets_; }
+    const std::vector<int>& neighbors() const { return neighbors_; }
+    /// Faces around vertex v: vertexFaces()[vertexFaceOffsets()[v] .. vertexFaceOffsets()[v+1]).
+    const std::vector<int>& vertexFaceOffsets() const { return vertexFaceOffsets_; }
+    const std::vector<int>& vertexFaces() const { return vertexFaces_; }
+    /// Edges around vertex v: vertexEdges()[vertexFaceOffsets()[v] .. vertexFaceOffsets()[v+1])
+    /// (a vertex of a closed polytope has as many edges as faces).
+    const std::vector<int>& vertexEdges() const { return vertexEdges_; }
+
+    /// Volume centroid: the contraction point of the growth distance (always interior).
+    const Vec3& centroid() const { return centroid_; }
+    /// Largest distance from the centroid to a vertex.
+    double radius() const { return radius_; }
+    double volume() const { return volume_; }
+
+    /// Index of a vertex maximising direction·vertex (brute force up to `bruteForceLimit`
+    /// vertices, hill climbing over adjacency above it).
+    int supportVertex(const Vec3& direction, int bruteForceLimit = 32) const;
+
+private:
+    Polytope() = default;
+    void buildTopology(double coplanarTolerance);
+
+    std::vector<Vec3> vertices_;
+    std::vector<Face> faces_;
+    std::vector<int> faceVertices_;
+    std::vector<Edge> edges_;
+    std::vector<int> neighborOffsets_, neighbors_;
+    std::vector<int> vertexFaceOffsets_, vertexFaces_, vertexEdges_;
+    Vec3 centroid_ = Vec3::Zero();
+    double radius_ = 0.0;
+    double volume_ = 0.0;
+};
+
+}  // namespace gdc

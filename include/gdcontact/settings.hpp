@@ -1,0 +1,50 @@
+// Every tunable of gdcontact, with its unit and the trade-off it controls.
+#pragma once
+
+namespace gdc {
+
+/// How the contact normal is found (stage 1). The paper's method is GrowthDistance; the others
+/// exist to measure the speed/accuracy trade against it.
+enum class NormalMethod {
+    GrowthDistance,  ///< GJK ray cast on A − B along the line through the contraction points (paper)
+};
+
+struct Settings {
+    /// Stage 1 — GJK ray-cast convergence, as a fraction of the pair's size (sum of the two
+    /// bounding radii; unitless). Smaller: a more exact normal and hit point, a few more GJK
+    /// iterations. Relative, so a scene behaves the same at 1 mm and 1 km.
+    double rayCastTolerance = 1e-10;
+
+    /// Stage 1 — cap on GJK ray-cast iterations (count). Reached only on grazing rays or huge
+    /// hulls; the best normal so far is used. Lower: bounded worst-case time, possibly a coarser normal.
+    int maxRayCastIterations = 64;
+
+    /// Stage 2 — Gauss-map angular tolerance (radians). A face whose normal is within this angle
+    /// of the contact normal is taken as the contact feature (face > edge > vertex). Larger: flat
+    /// resting contacts are recognised earlier (stabler stacks) at the price of reporting a face
+    /// for a slightly tilted body (its far points then carry negative depth and are dropped).
+    double angularTolerance = 0.05;  // ≈ 2.9°
+
+    /// Stage 3 — contacts are kept where the shapes overlap by at least −margin (metres, the
+    /// scene's length unit). 0: only touching/overlapping points. Positive: speculative contacts
+    /// for points that are about to touch (fewer missed contacts at large time steps, more points).
+    double margin = 0.0;
+
+    /// Reduction — most contact points returned for one pair (count, 1…16). Fewer: cheaper for the
+    /// solver, a coarser support polygon (the deepest point and the largest area are always kept).
+    int maxContacts = 8;
+
+    /// Support mapping — polytopes with at most this many vertices are searched by brute force,
+    /// larger ones by hill climbing over vertex adjacency (count). Measured cross-over: see
+    /// docs/benchmarks.md.
+    int bruteForceSupportLimit = 32;
+
+    /// Polytope construction — faces whose normals differ by less than this angle (radians) are
+    /// merged into one face. Larger: hulls from noisy points get clean faces; too large merges
+    /// genuinely distinct faces (curved hulls lose their shape).
+    double coplanarTolerance = 1e-6;
+
+    NormalMethod normalMethod = NormalMethod::GrowthDistance;
+};
+
+}  // namespace gdc

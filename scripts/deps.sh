@@ -1,0 +1,17 @@
+# Sourced by the scripts: installs the Debian packages gdcontact needs, once (idempotent).
+# Usage: install_packages pkg...   — installs only the missing ones (needs root, or sudo).
+install_packages() {
+    local missing=()
+    for package in "$@"; do
+        dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")
+    done
+    [ ${#missing[@]} -eq 0 ] && return 0
+    echo "Installing Debian packages: ${missing[*]}"
+    local sudo=""
+    [ "$(id -u)" -ne 0 ] && sudo="sudo"
+    $sudo apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}"
+}
+
+# Packages needed to build the library, samples and tests.
+BUILD_PACKAGES=(build-essential cmake pkg-config libeigen3-dev libqhull-dev libode-dev libccd-dev catch2)

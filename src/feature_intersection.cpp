@@ -1,0 +1,140 @@
+#include "feature_intersection.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gdc::detail {
+namespace {
+
+using Polygon2 = SmallVector<Vec2, 32>;
+
+double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+Polygon2 project(const FeatureGeometry& feature, const Vec3& u, const Vec3& v) {
+    Polygon2 out;
+    for (const Vec3& p : feature.points) out.push_back(Vec2(p.dot(u), p.dot(v)));
+    if (out.size() >= 3) {  // make it counter-clockwise in the plane (B's face arrives clockwise)
+        double area = 0;
+        for (std::size_t i = 0; i < out.size(); ++i) area += cross2(out[i], out[(i + 1) % out.size()]);
+        if (area < 0)
+            for (std::size_t i = 0, j = out.size() - 1; i < j; ++i, --j) std::swap(out[i], out[j]);
+    }
+    return out;
+}
+
+// Sutherland–Hodgman: clip a convex polygon (or a segment, or a point) by the half-planes left
+// of each CCW edge of `clip`.
+Polygon2 clipByConvexPolygon(const Polygon2& subject, const Polygon2& clip, double tolerance) {
+    Polygon2 current = subject;
+    for (std::size_t e = 0; e < clip.size() && !current.empty(); ++e) {
+        const Vec2& a = clip[e];
+        Vec2 edge = clip[(e + 1) % clip.size()] - a;
+        double length = edge.norm();
+        if (!(length > 0)) continue;
+        auto distance = [&](const Vec2& p) { return cross2(edge, p - a) / length; };  // > 0 inside
+        Polygon2 next;
+        const std::size_t n = current.size();
+        const bool closed = n >= 3;
+        for (std::size_t i = 0; i < n; ++i) {
+            const Vec2& p = current[i];
+            double dp = distance(p);
+            if (dp >= -tolerance) next.push_back(p);
+            if (!closed && i + 1 == n) break;
+            if (n == 1) break;
+            const Vec2& q = current[(i + 1) % n];
+            double dq = distance(q);
+            if ((dp < -tolerance && dq > tolerance) || (dp > tolerance && dq < -tolerance))
+                next.push_back(p + (q - p) * (dp / (dp - dq)));
+        }
+        current = next;
+    }
+    return current;
+}
+
+Polygon2 intersectSegments(const Vec2& a0, const Vec2& a1, const Vec2& b0, const Vec2& b1, double tolerance) {
+    Polygon2 out;
+    Vec2 da = a1 - a0, db = b1 - b0;
+    double denominator = cross2(da, db);
+    double la = da.norm(), lb = db.norm();
+    if (std::abs(denominator) <= 1e-9 * la * lb) {
+        // Parallel: overlap interval along A, if B lies on A's line.
+        if (std::abs(cross2(da, b0 - a0)) > tolerance * la) return out;
+        double t0 = (b0 - a0).dot(da) / (la * la), t1 = (b1 - a0).dot(da) / (la * la);
+        double lo = std::max(0.0, std::min(t0, t1)), hi = std::min(1.0, std::max(t0, t1));
+        if (hi < lo - tolerance / la) return out;
+        out.push_back(a0 + std::clamp(lo, 0.0, 1.0) * da);
+        if ((hi - lo) * la > tolerance) out.push_back(a0 + std::clamp(hi, 0.0, 1.0) * da);
+        return out;
+    }
+    double s = cross2(b0 - a0, db) / denominator, t = cross2(b0 - a0, da) / denominator;
+    if (s < -tolerance / la || s > 1 + tolerance / la || t < -tolerance / lb || t > 1 + tolerance / lb) return out;
+    out.push_back(a0 + std::clamp(s, 0.0, 1.0) * da);
+    return out;
+}
+
+bool pointOnSegment(const Vec2& p, const Vec2& a, const Vec2& b, double tolerance) {
+    Vec2 d = b - a;
+    double t = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    return (a + t * d - p).norm() <= tolerance;
+}
+
+Polygon2 intersect2d(const Polygon2& a, const Polygon2& b, double tolerance) {
+    if (a.size() < b.size()) return intersect2d(b, a, tolerance);  // a has at least as many points
+    Polygon2 out;
+    if (a.size() >= 3) return clipByConvexPolygon(b, a, tolerance);
+    if (a.size() == 2 && b.size() == 2) return intersectSegments(a[0], a[1], b[0], b[1], tolerance);
+    if (a.size() == 2) {
+        if (pointOnSegment(b[0], a[0], a[1], tolerance)) out.push_back(b[0]);
+        return out;
+    }
+    if ((a[0] - b[0]).norm() <= tolerance) out.push_back(b[0]);
+    return out;
+}
+
+// Height along n of the point of `feature` that projects to planar point q.
+double liftedHeight(const FeatureGeometry& feature, const Vec2& q, const Vec3& u, const Vec3& v, const Vec3& n) {
+    switch (feature.type) {
+        case FeatureType::Face: {
+            Vec3 base = q.x() * u + q.y() * v;
+            return (feature.planeOffset - feature.planeNormal.dot(base)) / feature.planeNormal.dot(n);
+        }
+        case FeatureType::Edge: {
+            const Vec3 &p0 = feature.points[0], &p1 = feature.points[1];
+            Vec2 e0(p0.dot(u), p0.dot(v)), e1(p1.dot(u), p1.dot(v));
+            Vec2 d = e1 - e0;
+            double t = d.squaredNorm() > 0 ? (q - e0).dot(d) / d.squaredNorm() : 0.0;
+            return (p0 + t * (p1 - p0)).dot(n);
+        }
+        case FeatureType::Vertex:
+        default: return feature.points[0].dot(n);
+    }
+}
+
+}  // namespace
+
+void planeBasis(const Vec3& n, Vec3& u, Vec3& v) {
+    Vec3 helper = std::abs(n.x()) < 0.57 ? Vec3::UnitX() : (std::abs(n.y()) < 0.57 ? Vec3::UnitY() : Vec3::UnitZ());
+    u = helper.cross(n).normalized();
+    v = n.cross(u);
+}
+
+LiftedPoints intersectFeatures(const FeatureGeometry& a, const FeatureGeometry& b, const Vec3& normal,
+                               double tolerance) {
+    Vec3 u, v;
+    planeBasis(normal, u, v);
+    Polygon2 region = intersect2d(project(a, u, v), project(b, u, v), tolerance);
+    // Drop near-duplicate consecutive points produced where edges cross at a vertex.
+    Polygon2 unique;
+    for (const Vec2& p : region)
+        if (unique.empty() || (p - unique.back()).norm() > tolerance) unique.push_back(p);
+    while (unique.size() > 1 && (unique[0] - unique.back()).norm() <= tolerance) unique.pop_back();
+
+    LiftedPoints lifted;
+    for (const Vec2& q : unique) {
+        double heightA = liftedHeight(a, q, u, v, normal), heightB = liftedHeight(b, q, u, v, normal);
+        lifted.push_back({q.x() * u + q.y() * v + 0.5 * (heightA + heightB) * normal, heightA - heightB, q});
+    }
+    return lifted;
+}
+
+}  // namespace gdc::detail

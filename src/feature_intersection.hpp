@@ -1,0 +1,40 @@
+// Stage 3 of the paper: intersect the two features in the contact plane.
+//
+// Both features are projected onto the plane ⟂ n and intersected in 2-D (convex polygon clipping,
+// segment clipping, segment crossing, point containment). Every vertex of the intersection is
+// lifted back onto both features along n; the gap between the two lifted points is that point's
+// own depth, so a tilted face–face contact reports the true wedge of depths rather than one value.
+#pragma once
+
+#include "small_vector.hpp"
+
+#include <gdcontact/manifold.hpp>
+
+namespace gdc::detail {
+
+/// A feature in the common (A's) frame: its vertices and, for a face, its plane.
+struct FeatureGeometry {
+    FeatureType type = FeatureType::Vertex;
+    SmallVector<Vec3, 16> points;  // 1 for a vertex, 2 for an edge, the loop of a face
+    Vec3 planeNormal = Vec3::Zero();  // faces only
+    double planeOffset = 0;
+};
+
+struct LiftedPoint {
+    Vec3 position;   // midway between the two features, in the common frame
+    double depth;    // (point on A − point on B)·n: > 0 overlapping
+    Vec2 planar;     // coordinates in the contact plane (for reduction)
+};
+
+using LiftedPoints = SmallVector<LiftedPoint, 32>;
+
+/// Orthonormal basis (u, v) of the plane ⟂ n (unit) with u × v = n.
+void planeBasis(const Vec3& n, Vec3& u, Vec3& v);
+
+/// Intersects feature A and feature B in the plane ⟂ `normal` (unit, from A towards B).
+/// `tolerance` is a length: the slack of containment tests. Returns nothing when the projections
+/// do not meet (the caller then falls back to the growth-distance witness).
+LiftedPoints intersectFeatures(const FeatureGeometry& a, const FeatureGeometry& b, const Vec3& normal,
+                               double tolerance);
+
+}  // namespace gdc::detail

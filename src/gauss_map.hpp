@@ -1,0 +1,23 @@
+// Stage 2 of the paper: one feature per body from its Gauss map.
+//
+// On the Gauss map of a polytope a face is a point (its normal), an edge is the arc between its
+// two face normals, and a vertex is the spherical region between them. The contact normal lands in
+// one region; an angular tolerance widens faces and arcs so that a nearly aligned face is taken as
+// a face (precedence face > edge > vertex), which is what makes resting contact produce the whole
+// support polygon rather than a flickering vertex.
+#pragma once
+
+#include <gdcontact/manifold.hpp>
+#include <gdcontact/polytope.hpp>
+
+namespace gdc::detail {
+
+/// The feature of `polytope` whose Gauss-map region is nearest `direction` (unit, local frame),
+/// within `angularTolerance` radians for faces and edges.
+Feature selectFeature(const Polytope& polytope, const Vec3& direction, double angularTolerance,
+                      int bruteForceLimit);
+
+/// The feature's vertices in order (1 for a vertex, 2 for an edge, the CCW loop of a face).
+int featureVertices(const Polytope& polytope, const Feature& feature, const int** indices, int* storage);
+
+}  // namespace gdc::detail

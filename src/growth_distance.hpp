@@ -1,0 +1,122 @@
+// Stage 1 of the paper: the contact normal from the growth distance (GJK-GD).
+//
+// Growth distance (paper eq. 1–2): scale A and B about interior contraction points p_A, p_B by α
+// until they just touch. Writing C = (A − p_A) − (B − p_B), which contains the origin in its
+// interior, the touching condition is −(1/α)·(p_A − p_B) ∈ ∂C: the exit point of the ray from
+// the origin along w = (p_B − p_A)/|p_B − p_A| through C. α = |p_A − p_B| / h, where h is the
+// exit distance; α < 1 overlaps, α > 1 is separated. The outward normal of C at the exit point is
+// the contact normal, pointing from A towards B.
+//
+// The exit point is found by a GJK ray cast (van den Bergen, "Ray Casting against General Convex
+// Objects with Application to Continuous Collision Detection", 2004) fired back at C from a point
+// outside it on the same line, so that the ray never starts inside.
+#pragma once
+
+#include <gdcontact/polytope.hpp>
+#include <gdcontact/settings.hpp>
+
+#include <array>
+
+namespace gdc::detail {
+
+/// A point of the Minkowski difference, with the vertices of A and B it came from.
+struct SupportPoint {
+    Vec3 point;
+    int vertexA;
+    int vertexB;
+};
+
+/// Closest point to the origin of the convex hull of up to four points, and the minimal subset
+/// of them (with barycentric weights) whose hull contains it.
+struct SimplexClosest {
+    Vec3 closest = Vec3::Zero();
+    int count = 0;
+    std::array<int, 4> used{};        // indices into the input points
+    std::array<double, 4> weights{};  // barycentric weights of the used points
+};
+SimplexClosest closestPointToOrigin(const std::array<Vec3, 4>& points, int count);
+
+struct RayCastResult {
+    bool hit = false;
+    double lambda = 0;      // hit point = origin + lambda · direction
+    Vec3 normal = Vec3::Zero();  // outward surface normal at the hit (not normalised; zero if unknown)
+    int simplexCount = 0;   // support points whose hull contains the hit point
+    std::array<SupportPoint, 4> simplex{};
+    std::array<double, 4> weights{};
+    int iterations = 0;
+};
+
+/// GJK ray cast against a convex set given by its support function `support(direction)` →
+/// SupportPoint. Stores the support points themselves (not x − p), so that moving the ray's
+/// current point x never leaves a stale simplex. `tolerance` is a length.
+template <class Support>
+RayCastResult gjkRayCast(const Support& support, const Vec3& origin, const Vec3& direction, double tolerance,
+                         int maxIterations) {
+    RayCastResult result;
+    Vec3 x = origin;
+    SupportPoint first = support(origin);
+    Vec3 v = x - first.point;
+    std::array<SupportPoint, 4> simplex{};
+    int count = 0;
+    const double toleranceSquared = tolerance * tolerance;
+    while (v.squaredNorm() > toleranceSquared && result.iterations < maxIterations) {
+        ++result.iterations;
+        SupportPoint p = support(v);
+        Vec3 w = x - p.point;
+        double vw = v.dot(w);
+        if (vw > 0) {
+            double vr = v.dot(direction);
+            if (vr >= 0) return result;  // the ray points away from the set: miss
+            result.lambda -= vw / vr;
+            x = origin + result.lambda * direction;
+            result.normal = v;
+        }
+        bool duplicate = false;
+        for (int i = 0; i < count; ++i)
+            duplicate |= simplex[i].vertexA == p.vertexA && simplex[i].vertexB == p.vertexB;
+        if (duplicate && vw <= 0) break;  // no new support point and no progress: converged
+        std::array<Vec3, 4> relative;
+        if (!duplicate) simplex[count++] = p;
+        for (int i = 0; i < count; ++i) relative[i] = x - simplex[i].point;
+        SimplexClosest closest = closestPointToOrigin(relative, count);
+        std::array<SupportPoint, 4> reduced{};
+        for (int i = 0; i < closest.count; ++i) reduced[i] = simplex[closest.used[i]];
+        simplex = reduced;
+        count = closest.count;
+        for (int i = 0; i < count; ++i) result.weights[i] = closest.weights[i];
+        v = closest.closest;
+        if (count == 4) break;  // x is inside the hull of the simplex: on the boundary within rounding
+    }
+    result.hit = true;
+    result.simplexCount = count;
+    result.simplex = simplex;
+    // result.normal is the v of the last advance: the normal of a true supporting plane of C
+    // through the hit point, so always valid, but only as accurate as the convergence. When the
+    // hit lies inside a facet of the polytope C, the final three support points span that facet and
+    // give its normal exactly — provided the plane they span really supports C (a triangle that
+    // cuts through C near an edge does not), which one more support query confirms.
+    if (count >= 3) {
+        Vec3 facetNormal = (simplex[1].point - simplex[0].point).cross(simplex[2].point - simplex[0].point);
+        if (facetNormal.dot(result.normal) < 0) facetNormal = -facetNormal;
+        if (facetNormal.squaredNorm() > 0 && facetNormal.allFinite()) {
+            facetNormal.normalize();
+            double height = facetNormal.dot(simplex[0].point);
+            if (facetNormal.dot(support(facetNormal).point) <= height + tolerance) result.normal = facetNormal;
+        }
+    }
+    return result;
+}
+
+/// Growth distance between A and B (B given in A's frame). All vectors in A's frame.
+struct GrowthDistance {
+    bool valid = false;   // false when the contraction points coincide or the cast failed
+    Vec3 normal = Vec3::UnitZ();  // unit, from A towards B
+    double growth = 1;    // α: < 1 overlapping, > 1 separated
+    Vec3 witnessA = Vec3::Zero();  // touching points of the scaled shapes, mapped back onto A and B
+    Vec3 witnessB = Vec3::Zero();
+    int iterations = 0;
+};
+
+GrowthDistance growthDistance(const Polytope& a, const Polytope& b, const Pose& bInA, const Settings& settings);
+
+}  // namespace gdc::detail

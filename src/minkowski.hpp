@@ -1,0 +1,38 @@
+// Support mappings of a pair of polytopes, with B placed in A's frame. Working in A's frame keeps
+// precision when both bodies are far from the world origin.
+#pragma once
+
+#include "growth_distance.hpp"
+
+namespace gdc::detail {
+
+struct MinkowskiDifference {
+    const Polytope& a;
+    const Polytope& b;
+    Pose bInA;
+    int bruteForceLimit;
+    Vec3 centreA;  // contraction points (centroids), in A's frame
+    Vec3 centreB;
+
+    MinkowskiDifference(const Polytope& a_, const Polytope& b_, const Pose& bInA_, int limit)
+        : a(a_), b(b_), bInA(bInA_), bruteForceLimit(limit), centreA(a_.centroid()),
+          centreB(bInA_.apply(b_.centroid())) {}
+
+    int supportA(const Vec3& direction) const { return a.supportVertex(direction, bruteForceLimit); }
+    int supportB(const Vec3& direction) const {
+        return b.supportVertex(bInA.rotation.transpose() * direction, bruteForceLimit);
+    }
+    Vec3 vertexB(int index) const { return bInA.apply(b.vertices()[index]); }
+
+    /// Support point of (A − p_A) − (B − p_B) in `direction`.
+    SupportPoint centred(const Vec3& direction) const {
+        int ia = supportA(direction), ib = supportB(-direction);
+        return {(a.vertices()[ia] - centreA) - (vertexB(ib) - centreB), ia, ib};
+    }
+    /// Overlap of A and B along the unit `normal` (from A towards B): > 0 overlapping.
+    double overlapAlong(const Vec3& normal) const {
+        return normal.dot(a.vertices()[supportA(normal)]) - normal.dot(vertexB(supportB(-normal)));
+    }
+};
+
+}  // namespace gdc::detail

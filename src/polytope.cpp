@@ -1,0 +1,291 @@
+// Polytope construction from explicit faces: validation, coplanar-face merging, and the
+// adjacency that makes up the Gauss map (faces = points, edges = arcs, vertices = regions).
+#include <gdcontact/polytope.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <sstream>
+#include <utility>
+
+namespace gdc {
+namespace {
+
+std::string faceName(std::size_t face) { return "face " + std::to_string(face); }
+
+// Newell's method: robust area-weighted normal of a (possibly slightly non-planar) polygon.
+Vec3 newellNormal(const std::vector<Vec3>& vertices, const std::vector<int>& loop) {
+    Vec3 normal = Vec3::Zero();
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+        const Vec3& p = vertices[loop[i]];
+        const Vec3& q = vertices[loop[(i + 1) % loop.size()]];
+        normal += Vec3((p.y() - q.y()) * (p.z() + q.z()), (p.z() - q.z()) * (p.x() + q.x()),
+                       (p.x() - q.x()) * (p.y() + q.y()));
+    }
+    return normal;  // length = 2 · area
+}
+
+struct UnionFind {
+    std::vector<int> parent;
+    explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+    int find(int i) { return parent[i] == i ? i : parent[i] = find(parent[i]); }
+    void unite(int i, int j) { parent[find(i)] = find(j); }
+};
+
+using DirectedEdges = std::map<std::pair<int, int>, int>;  // (tail, head) → face
+
+DirectedEdges directedEdges(const std::vector<std::vector<int>>& faces) {
+    DirectedEdges edges;
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+        const auto& loop = faces[f];
+        for (std::size_t i = 0; i < loop.size(); ++i) {
+            auto key = std::make_pair(loop[i], loop[(i + 1) % loop.size()]);
+            if (!edges.emplace(key, static_cast<int>(f)).second)
+                throw InvalidInput("edge " + std::to_string(key.first) + "→" + std::to_string(key.second) +
+                                   " is used twice in the same direction (" + faceName(f) +
+                                   "): faces are not consistently wound or the surface is not manifold");
+        }
+    }
+    for (const auto& [key, face] : edges)
+        if (!edges.count({key.second, key.first}))
+            throw InvalidInput("edge " + std::to_string(key.first) + "→" + std::to_string(key.second) + " of " +
+                               faceName(face) + " has no opposite edge: the surface is not closed");
+    return edges;
+}
+
+// Merges neighbouring faces whose normals differ by less than the tolerance, so that a face
+// of the Gauss map is a single point (the paper's Fig. 3) rather than a cluster of triangles.
+std::vector<std::vector<int>> mergeCoplanarFaces(const std::vector<Vec3>& vertices,
+                                                 const std::vector<std::vector<int>>& faces,
+                                                 double coplanarTolerance) {
+    std::vector<Vec3> normals;
+    for (const auto& loop : faces) normals.push_back(newellNormal(vertices, loop).normalized());
+    const DirectedEdges edges = directedEdges(faces);
+    UnionFind groups(faces.size());
+    const double cosTolerance = std::cos(coplanarTolerance);
+    for (const auto& [key, face] : edges) {
+        int other = edges.at({key.second, key.first});
+        if (normals[face].dot(normals[other]) >= cosTolerance) groups.unite(face, other);
+    }
+    // Boundary of each group: directed edges whose opposite edge belongs to another group.
+    std::map<int, std::map<int, int>> nextInGroup;  // group → (tail → head)
+    for (const auto& [key, face] : edges) {
+        int other = edges.at({key.second, key.first});
+        if (groups.find(face) != groups.find(other)) nextInGroup[groups.find(face)][key.first] = key.second;
+    }
+    std::vector<std::vector<int>> merged;
+    for (auto& [group, next] : nextInGroup) {
+        std::vector<int> loop;
+        int start = next.begin()->first, current = start;
+        do {
+            loop.push_back(current);
+            auto it = next.find(current);
+            if (it == next.end() || loop.size() > next.size())
+                throw InvalidInput("merged coplanar faces around " + faceName(group) + " do not form one polygon");
+            current = it->second;
+        } while (current != start);
+        if (loop.size() != next.size())
+            throw InvalidInput("merged coplanar faces around " + faceName(group) + " have a hole");
+        merged.push_back(std::move(loop));
+    }
+    return merged;
+}
+
+// Drops vertices that lie on a straight run of a face boundary (only two faces meet there):
+// they carry no region of the Gauss map and would create zero-length arcs.
+void removeFlatVertices(std::vector<std::vector<int>>& faces, std::size_t vertexCount) {
+    for (bool changed = true; changed;) {
+        changed = false;
+        std::vector<int> faceCount(vertexCount, 0);
+        for (const auto& loop : faces)
+            for (int v : loop) ++faceCount[v];
+        for (auto& loop : faces) {
+            auto end = std::remove_if(loop.begin(), loop.end(), [&](int v) { return faceCount[v] == 2; });
+            if (end != loop.end()) {
+                loop.erase(end, loop.end());
+                changed = true;
+            }
+        }
+    }
+}
+
+}  // namespace
+
+Polytope Polytope::fromFaces(const std::vector<Vec3>& vertices, const std::vector<std::vector<int>>& faces,
+                             const Settings& settings) {
+    if (vertices.size() < 4) throw InvalidInput("a polytope needs at least 4 vertices");
+    if (faces.size() < 4) throw InvalidInput("a closed polytope needs at least 4 faces");
+    for (std::size_t i = 0; i < vertices.size(); ++i)
+        if (!vertices[i].allFinite()) throw InvalidInput("vertex " + std::to_string(i) + " is not finite");
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+        const auto& loop = faces[f];
+        if (loop.size() < 3) throw InvalidInput(faceName(f) + " has fewer than 3 vertices");
+        for (int v : loop)
+            if (v < 0 || static_cast<std::size_t>(v) >= vertices.size())
+                throw InvalidInput(faceName(f) + " names vertex " + std::to_string(v) + ", which does not exist");
+        std::vector<int> sorted = loop;
+        std::sort(sorted.begin(), sorted.end());
+        if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+            throw InvalidInput(faceName(f) + " repeats a vertex");
+    }
+    Vec3 lo = vertices[0], hi = vertices[0];
+    for (const Vec3& v : vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    const double size = (hi - lo).norm();
+    if (!(size > 0)) throw InvalidInput("all vertices coincide");
+    for (std::size_t f = 0; f < faces.size(); ++f)
+        if (newellNormal(vertices, faces[f]).norm() <= 1e-12 * size * size)
+            throw InvalidInput(faceName(f) + " has zero area (collinear vertices)");
+
+    Polytope p;
+    std::vector<std::vector<int>> loops = mergeCoplanarFaces(vertices, faces, settings.coplanarTolerance);
+    removeFlatVertices(loops, vertices.size());
+
+    // Keep only referenced vertices, renumbered in their original order.
+    std::vector<int> renumber(vertices.size(), -1);
+    for (const auto& loop : loops)
+        for (int v : loop) renumber[v] = 0;
+    for (std::size_t v = 0; v < vertices.size(); ++v)
+        if (renumber[v] == 0) {
+            renumber[v] = static_cast<int>(p.vertices_.size());
+            p.vertices_.push_back(vertices[v]);
+        }
+    for (auto& loop : loops) {
+        Polytope::Face face{};
+        face.first = static_cast<int>(p.faceVertices_.size());
+        face.count = static_cast<int>(loop.size());
+        for (int& v : loop) v = renumber[v], p.faceVertices_.push_back(v);
+        Vec3 normal = newellNormal(p.vertices_, loop);
+        if (normal.norm() <= 1e-12 * size * size)
+            throw InvalidInput("a merged face has zero area: the polytope is flat (no interior)");
+        face.normal = normal.normalized();
+        face.offset = -1e300;
+        for (int v : loop) face.offset = std::max(face.offset, face.normal.dot(p.vertices_[v]));
+        p.faces_.push_back(face);
+    }
+    p.buildTopology(size);
+    return p;
+}
+
+void Polytope::buildTopology(double size) {
+    const int vertexCount = static_cast<int>(vertices_.size());
+    // Volume and centroid by a fan of tetrahedra from the vertex mean (an interior point of a
+    // convex body), so that the contraction point is the true centroid.
+    Vec3 reference = Vec3::Zero();
+    for (const Vec3& v : vertices_) reference += v;
+    reference /= vertexCount;
+    double volume = 0;
+    Vec3 moment = Vec3::Zero();
+    for (const Face& face : faces_) {
+        const Vec3& a = vertices_[faceVertices_[face.first]];
+        for (int i = 1; i + 1 < face.count; ++i) {
+            const Vec3& b = vertices_[faceVertices_[face.first + i]];
+            const Vec3& c = vertices_[faceVertices_[face.first + i + 1]];
+            double tetra = (a - reference).dot((b - reference).cross(c - reference)) / 6.0;
+            volume += tetra;
+            moment += tetra * (reference + a + b + c) / 4.0;
+        }
+    }
+    if (!(volume > 1e-12 * size * size * size))
+        throw InvalidInput(volume < 0 ? "faces are wound clockwise seen from outside (expected counter-clockwise)"
+                                      : "the polytope has no interior (flat or degenerate)");
+    volume_ = volume;
+    centroid_ = moment / volume;
+
+    // Convexity and planarity: every vertex must lie inside every face plane (within a tolerance
+    // relative to the size, so that hulls from noisy points are accepted).
+    const double tolerance = 1e-7 * size;
+    for (std::size_t f = 0; f < faces_.size(); ++f) {
+        const Face& face = faces_[f];
+        for (int i = 0; i < face.count; ++i)
+            if (face.normal.dot(vertices_[faceVertices_[face.first + i]]) < face.offset - 1e-6 * size)
+                throw InvalidInput(faceName(f) + " is not planar");
+        for (int v = 0; v < vertexCount; ++v)
+            if (face.normal.dot(vertices_[v]) > face.offset + tolerance)
+                throw InvalidInput("vertex " + std::to_string(v) + " lies outside " + faceName(f) +
+                                   ": the polytope is not convex");
+        if (face.normal.dot(centroid_) >= face.offset)
+            throw InvalidInput(faceName(f) + " faces inwards (wrong winding)");
+    }
+
+    // Edges (each undirected edge once) with the faces on either side: the arcs of the Gauss map.
+    std::map<std::pair<int, int>, int> leftFaceOf;
+    for (std::size_t f = 0; f < faces_.size(); ++f)
+        for (int i = 0; i < faces_[f].count; ++i)
+            leftFaceOf[{faceVertices_[faces_[f].first + i],
+                        faceVertices_[faces_[f].first + (i + 1) % faces_[f].count]}] = static_cast<int>(f);
+    edges_.clear();
+    for (const auto& [key, face] : leftFaceOf)
+        if (key.first < key.second) {
+            auto opposite = leftFaceOf.find({key.second, key.first});
+            if (opposite == leftFaceOf.end()) throw InvalidInput("the surface is not closed");
+            edges_.push_back({key.first, key.second, face, opposite->second});
+        }
+    if (vertexCount - static_cast<int>(edges_.size()) + static_cast<int>(faces_.size()) != 2)
+        throw InvalidInput("the faces do not form a closed surface of genus 0 (Euler characteristic ≠ 2)");
+
+    // Per-vertex adjacency in compressed rows: neighbours, incident faces, incident edges.
+    std::vector<std::vector<int>> neighbours(vertexCount), incidentFaces(vertexCount), incidentEdges(vertexCount);
+    for (std::size_t e = 0; e < edges_.size(); ++e) {
+        neighbours[edges_[e].tail].push_back(edges_[e].head);
+        neighbours[edges_[e].head].push_back(edges_[e].tail);
+        incidentEdges[edges_[e].tail].push_back(static_cast<int>(e));
+        incidentEdges[edges_[e].head].push_back(static_cast<int>(e));
+    }
+    for (std::size_t f = 0; f < faces_.size(); ++f)
+        for (int i = 0; i < faces_[f].count; ++i)
+            incidentFaces[faceVertices_[faces_[f].first + i]].push_back(static_cast<int>(f));
+    neighborOffsets_.assign(1, 0);
+    vertexFaceOffsets_.assign(1, 0);
+    neighbors_.clear(), vertexFaces_.clear(), vertexEdges_.clear();
+    for (int v = 0; v < vertexCount; ++v) {
+        if (incidentFaces[v].size() != incidentEdges[v].size() || incidentFaces[v].size() < 3)
+            throw InvalidInput("vertex " + std::to_string(v) + " is not a proper corner of the surface");
+        neighbors_.insert(neighbors_.end(), neighbours[v].begin(), neighbours[v].end());
+        vertexFaces_.insert(vertexFaces_.end(), incidentFaces[v].begin(), incidentFaces[v].end());
+        vertexEdges_.insert(vertexEdges_.end(), incidentEdges[v].begin(), incidentEdges[v].end());
+        neighborOffsets_.push_back(static_cast<int>(neighbors_.size()));
+        vertexFaceOffsets_.push_back(static_cast<int>(vertexFaces_.size()));
+    }
+    radius_ = 0;
+    for (const Vec3& v : vertices_) radius_ = std::max(radius_, (v - centroid_).norm());
+}
+
+Polytope Polytope::box(const Vec3& halfExtents) {
+    if (!halfExtents.allFinite() || !(halfExtents.minCoeff() > 0))
+        throw InvalidInput("box half extents must be finite and positive");
+    std::vector<Vec3> corners;
+    for (int i = 0; i < 8; ++i)
+        corners.emplace_back((i & 1 ? 1 : -1) * halfExtents.x(), (i & 2 ? 1 : -1) * halfExtents.y(),
+                             (i & 4 ? 1 : -1) * halfExtents.z());
+    // Counter-clockwise seen from outside: −x, +x, −y, +y, −z, +z.
+    const std::vector<std::vector<int>> faces = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
+                                                 {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+    return fromFaces(corners, faces);
+}
+
+int Polytope::supportVertex(const Vec3& direction, int bruteForceLimit) const {
+    const int count = static_cast<int>(vertices_.size());
+    int best = 0;
+    double bestValue = vertices_[0].dot(direction);
+    if (count <= bruteForceLimit) {
+        for (int v = 1; v < count; ++v) {
+            double value = vertices_[v].dot(direction);
+            if (value > bestValue) bestValue = value, best = v;
+        }
+        return best;
+    }
+    // Hill climbing: on a convex polytope a vertex with no strictly better neighbour is a global
+    // maximum (the maximisers form a face, and any other vertex has an ascending edge).
+    for (bool improved = true; improved;) {
+        improved = false;
+        for (int i = neighborOffsets_[best]; i < neighborOffsets_[best + 1]; ++i) {
+            int candidate = neighbors_[i];
+            double value = vertices_[candidate].dot(direction);
+            if (value > bestValue) bestValue = value, best = candidate, improved = true;
+        }
+    }
+    return best;
+}
+
+}  // namespace gdc

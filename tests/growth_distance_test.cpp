@@ -1,0 +1,90 @@
+// Stage 1: the growth distance and its normal against analytic answers, and its pitfalls:
+// coincident contraction points, grazing rays, deep overlap with the centres crossed.
+#include "geometry_oracles.hpp"
+#include "growth_distance.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace gdc;
+using namespace gdc::testing;
+using gdc::detail::growthDistance;
+
+TEST_CASE("growth factor of two axis-aligned unit cubes is their centre distance over 1") {
+    // A − B of two unit cubes is a cube of half-size 1, so the ray along x exits at h = 1 and
+    // α = |p_A − p_B| / 1: below 1 overlapping, above 1 separated.
+    const Polytope cube = Polytope::box(Vec3(0.5, 0.5, 0.5));
+    for (double distance : {0.3, 0.9, 1.0, 1.4, 3.0}) {
+        auto gd = growthDistance(cube, cube, makePose(Vec3(distance, 0, 0)), {});
+        REQUIRE(gd.valid);
+        CHECK(gd.growth == Approx(distance).epsilon(1e-12));
+        CHECK((gd.normal - Vec3::UnitX()).norm() < 1e-12);
+    }
+}
+
+TEST_CASE("growth normal of a cube resting on a slab is the slab's face normal") {
+    const Polytope slab = Polytope::box(Vec3(2, 2, 0.25)), cube = Polytope::box(Vec3(0.5, 0.5, 0.5));
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> offset(-1.2, 1.2), yaw(-M_PI, M_PI);
+    for (int i = 0; i < 200; ++i) {
+        Pose pose = makePose(Vec3(offset(random), offset(random), 0.749), rotationAbout(Vec3::UnitZ(), yaw(random)));
+        auto gd = growthDistance(slab, cube, pose, {});
+        REQUIRE(gd.valid);
+        CHECK(gd.normal.dot(Vec3::UnitZ()) > 1 - 1e-12);
+        CHECK(gd.growth < 1);
+    }
+}
+
+TEST_CASE("coincident contraction points give no growth direction (the caller falls back)") {
+    const Polytope cube = Polytope::box(Vec3(0.5, 0.5, 0.5));
+    auto gd = growthDistance(cube, cube, makePose(Vec3::Zero(), rotationAbout(Vec3(1, 2, 3), 0.4)), {});
+    CHECK_FALSE(gd.valid);
+}
+
+TEST_CASE("grazing ray through an edge and a vertex of A − B still gives a unit normal in the normal cone") {
+    const Polytope cube = Polytope::box(Vec3(0.5, 0.5, 0.5));
+    // Centre offsets along a diagonal make the ray pass exactly through an edge (then a vertex) of
+    // the cube A − B; any normal of the cone there is a valid answer, none may be zero or NaN.
+    for (const Vec3& direction : {Vec3(1, 1, 0), Vec3(1, 1, 1), Vec3(1, 1, 1e-9)}) {
+        for (double scale : {0.5, 1.0, 2.0, 4.0}) {
+            auto gd = growthDistance(cube, cube, makePose(scale * direction.normalized() * std::sqrt(2.0)), {});
+            REQUIRE(gd.valid);
+            CHECK(gd.normal.allFinite());
+            CHECK(gd.normal.norm() == Approx(1).margin(1e-12));
+            // The exit point is the corner region: the normal has non-negative components.
+            CHECK(gd.normal.minCoeff() > -1e-9);
+            CHECK(gd.normal.dot(direction.normalized()) > 0.5);
+        }
+    }
+}
+
+TEST_CASE("deep overlap with the centres crossed still yields a finite growth and unit normal") {
+    const Polytope plank = Polytope::box(Vec3(2, 0.2, 0.2)), cube = Polytope::box(Vec3(0.3, 0.3, 0.3));
+    std::mt19937 random(5);
+    for (int i = 0; i < 200; ++i) {
+        Pose pose = makePose(Vec3(std::uniform_real_distribution<double>(-1.5, 1.5)(random), 0.01, -0.02),
+                             randomRotation(random));
+        auto gd = growthDistance(plank, cube, pose, {});
+        REQUIRE(gd.valid);
+        CHECK(gd.normal.norm() == Approx(1).margin(1e-12));
+        CHECK(gd.growth > 0);
+        CHECK(gd.growth < 1);
+    }
+}
+
+TEST_CASE("witness points lie on the surfaces of A and B") {
+    const Polytope ico = Polytope::fromPoints({Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0),
+                                               Vec3(0, 0, 1), Vec3(0, 0, -1)});
+    std::mt19937 random(9);
+    std::uniform_real_distribution<double> coordinate(-1.8, 1.8);
+    for (int i = 0; i < 300; ++i) {
+        Pose bInA = makePose(Vec3(coordinate(random), coordinate(random), coordinate(random)), randomRotation(random));
+        auto gd = growthDistance(ico, ico, bInA, {});
+        if (!gd.valid) continue;
+        CHECK(std::abs(signedDistance(ico, Pose{}, gd.witnessA)) < 1e-9);
+        CHECK(std::abs(signedDistance(ico, bInA, gd.witnessB)) < 1e-9);
+        // The scaled shapes touch where the witnesses lie on the line through the centres.
+        Vec3 along = gd.witnessA - gd.witnessB;
+        Vec3 centres = bInA.position;
+        CHECK(along.cross(centres).norm() <= 1e-9 * (1 + along.norm() * centres.norm()));
+    }
+}
