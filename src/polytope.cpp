@@ -192,20 +192,25 @@ void Polytope::buildTopology(double size) {
     volume_ = volume;
     centroid_ = moment / volume;
 
-    // Convexity and planarity: every vertex must lie inside every face plane (within a tolerance
-    // relative to the size, so that hulls from noisy points are accepted).
+    // Planarity and convexity: every vertex must lie inside every face plane, within a tolerance
+    // relative to the size so that hulls from noisy points are accepted. The full check is
+    // quadratic; above a few million vertex–face pairs (large qhull hulls, convex by construction)
+    // each face is checked against the vertices of the faces across its edges (local convexity,
+    // which with closedness, outward winding and genus 0 is what a convex surface needs).
     const double tolerance = 1e-7 * size;
+    const bool fullConvexityCheck = static_cast<double>(vertexCount) * static_cast<double>(faces_.size()) <= 4e6;
     for (std::size_t f = 0; f < faces_.size(); ++f) {
         const Face& face = faces_[f];
         for (int i = 0; i < face.count; ++i)
             if (face.normal.dot(vertices_[faceVertices_[face.first + i]]) < face.offset - 1e-6 * size)
                 throw InvalidInput(faceName(f) + " is not planar");
+        if (face.normal.dot(centroid_) >= face.offset)
+            throw InvalidInput(faceName(f) + " faces inwards (wrong winding)");
+        if (!fullConvexityCheck) continue;
         for (int v = 0; v < vertexCount; ++v)
             if (face.normal.dot(vertices_[v]) > face.offset + tolerance)
                 throw InvalidInput("vertex " + std::to_string(v) + " lies outside " + faceName(f) +
                                    ": the polytope is not convex");
-        if (face.normal.dot(centroid_) >= face.offset)
-            throw InvalidInput(faceName(f) + " faces inwards (wrong winding)");
     }
 
     // Edges (each undirected edge once) with the faces on either side: the arcs of the Gauss map.
@@ -221,6 +226,15 @@ void Polytope::buildTopology(double size) {
             if (opposite == leftFaceOf.end()) throw InvalidInput("the surface is not closed");
             edges_.push_back({key.first, key.second, face, opposite->second});
         }
+    if (!fullConvexityCheck)
+        for (const Edge& edge : edges_)
+            for (auto [face, other] : {std::pair{edge.leftFace, edge.rightFace}, std::pair{edge.rightFace, edge.leftFace}})
+                for (int i = 0; i < faces_[other].count; ++i) {
+                    int v = faceVertices_[faces_[other].first + i];
+                    if (faces_[face].normal.dot(vertices_[v]) > faces_[face].offset + tolerance)
+                        throw InvalidInput("vertex " + std::to_string(v) + " lies outside " + faceName(face) +
+                                           ": the polytope is not convex");
+                }
     if (vertexCount - static_cast<int>(edges_.size()) + static_cast<int>(faces_.size()) != 2)
         throw InvalidInput("the faces do not form a closed surface of genus 0 (Euler characteristic ≠ 2)");
 

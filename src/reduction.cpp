@@ -8,13 +8,11 @@ namespace {
 
 double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-// Area of the convex hull of a few planar points (monotone chain).
-double hullArea(SmallVector<Vec2, 17>& points) {
+// Convex hull (counter-clockwise, monotone chain) of a few planar points, in place; returns its size.
+int convexHull(SmallVector<Vec2, 17>& points, std::array<Vec2, 36>& hull) {
     const int n = static_cast<int>(points.size());
-    if (n < 3) return 0;
     std::sort(points.data(), points.data() + n,
               [](const Vec2& p, const Vec2& q) { return p.x() < q.x() || (p.x() == q.x() && p.y() < q.y()); });
-    std::array<Vec2, 36> hull;
     int k = 0;
     for (int i = 0; i < n; ++i) {
         while (k >= 2 && cross2(hull[k - 1] - hull[k - 2], points[i] - hull[k - 2]) <= 0) --k;
@@ -24,9 +22,20 @@ double hullArea(SmallVector<Vec2, 17>& points) {
         while (k >= lower && cross2(hull[k - 1] - hull[k - 2], points[i] - hull[k - 2]) <= 0) --k;
         hull[k++] = points[i];
     }
-    double area = 0;
-    for (int i = 0; i + 1 < k; ++i) area += cross2(hull[i], hull[i + 1]);
-    return 0.5 * area;
+    return std::max(1, k - 1);
+}
+
+// Area the convex polygon `hull` (CCW) gains when `p` joins it: the triangles p forms with the
+// edges it sees from outside.
+double areaGain(const std::array<Vec2, 36>& hull, int size, const Vec2& p) {
+    double gain = 0;
+    for (int i = 0; i < size; ++i) {
+        const Vec2& a = hull[i];
+        const Vec2& b = hull[(i + 1) % size];
+        double twiceArea = cross2(b - a, p - a);
+        if (twiceArea < 0) gain -= 0.5 * twiceArea;
+    }
+    return gain;
 }
 
 }  // namespace
@@ -57,21 +66,25 @@ int reduceContacts(const LiftedPoints& points, int maxCount, int* chosen) {
         }
     take(farthest, 1);
 
+    std::array<Vec2, 36> hull;
     for (int slot = 2; slot < maxCount; ++slot) {
+        SmallVector<Vec2, 17> kept;
+        for (int s = 0; s < slot; ++s) kept.push_back(points[chosen[s]].planar);
+        int hullSize = convexHull(kept, hull);
         int best = -1;
-        double bestArea = -1, bestDistance = -1;
+        double bestGain = -1, bestDistance = -1;
         for (int i = 0; i < count; ++i) {
             if (taken[i]) continue;
-            SmallVector<Vec2, 17> candidate;
-            for (int s = 0; s < slot; ++s) candidate.push_back(points[chosen[s]].planar);
-            candidate.push_back(points[i].planar);
-            double area = hullArea(candidate);
-            // Collinear sets (an edge contact) have no area: spread along the line instead.
+            // Both orientations of a 2-point hull count, so a segment's gain is its triangle.
+            double gain = hullSize >= 3 ? areaGain(hull, hullSize, points[i].planar)
+                                        : 0.5 * std::abs(cross2(points[chosen[1]].planar - points[chosen[0]].planar,
+                                                                points[i].planar - points[chosen[0]].planar));
+            // Collinear sets (an edge contact) gain no area: spread along the line instead.
             double distance = 0;
             for (int s = 0; s < slot; ++s)
                 distance = std::max(distance, (points[i].planar - points[chosen[s]].planar).squaredNorm());
-            if (area > bestArea || (area == bestArea && distance > bestDistance))
-                bestArea = area, bestDistance = distance, best = i;
+            if (gain > bestGain || (gain == bestGain && distance > bestDistance))
+                bestGain = gain, bestDistance = distance, best = i;
         }
         take(best, slot);
     }
