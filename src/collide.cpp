@@ -102,30 +102,29 @@ Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const 
     if ((pair.centreB - pair.centreA).norm() > size + settings.margin) return manifold;
 
     // Stage 1: contact normal from the growth distance.
-    GrowthDistance growth = growthDistance(a, b, bInA, settings);
+    GrowthDistance growth = growthDistance(a, b, bInA, settings, /*needWitnesses=*/false);
     Vec3 normal = growth.valid ? growth.normal : minimumOverlapFaceNormal(pair);
     if (pair.overlapAlong(normal) < -settings.margin - tolerance) return manifold;  // separated along n
 
     // Stage 2: one Gauss-map feature per body (B's searched in its own frame with −n).
-    manifold.featureA = selectFeature(a, normal, settings.angularTolerance, settings.bruteForceSupportLimit);
-    manifold.featureB = selectFeature(b, bInA.rotation.transpose() * -normal, settings.angularTolerance,
+    const AngularTolerance angularTolerance(settings.angularTolerance);
+    manifold.featureA = selectFeature(a, normal, angularTolerance, settings.bruteForceSupportLimit);
+    manifold.featureB = selectFeature(b, bInA.rotation.transpose() * -normal, angularTolerance,
                                       settings.bruteForceSupportLimit);
     const FeatureGeometry featureA = featureGeometry(a, manifold.featureA, Pose{});
     const FeatureGeometry featureB = featureGeometry(b, manifold.featureB, bInA);
     normal = refineNormal(normal, featureA, featureB);
 
     // Stage 3: intersection in the contact plane, each point with its own depth.
-    LiftedPoints points = intersectFeatures(featureA, featureB, normal, tolerance);
-    LiftedPoints kept;
-    for (const LiftedPoint& p : points)
-        if (p.depth >= -settings.margin - tolerance) kept.push_back(p);
+    LiftedPoints kept = intersectFeatures(featureA, featureB, normal, tolerance, -settings.margin - tolerance);
     if (kept.empty()) {
         // The projections do not meet: at a vertex–vertex touch (rounding), or in deep overlap,
         // where the features that touch when the bodies are shrunk to the growth distance drift
         // apart once they are full size. Never a missing contact: one point in the overlap, midway
         // between the growth-distance witnesses (both lie on the line through the contraction
         // points, inside A ∩ B), with the overlap along n as depth — the translation that separates.
-        Vec3 middle = growth.valid ? 0.5 * (growth.witnessA + growth.witnessB)
+        if (growth.valid && !growth.hasWitnesses) growth = growthDistance(a, b, bInA, settings);
+        Vec3 middle = growth.hasWitnesses ? 0.5 * (growth.witnessA + growth.witnessB)
                                    : 0.5 * (a.vertices()[pair.supportA(normal)] + pair.vertexB(pair.supportB(-normal)));
         kept.push_back({middle, pair.overlapAlong(normal), Vec2::Zero()});
     }
@@ -150,7 +149,8 @@ Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b, const
 
     // The half-space's Gauss map is the single point −n, so its feature is its plane; A's
     // feature comes from its Gauss map as usual, and each of its vertices is lifted onto the plane.
-    manifold.featureA = selectFeature(a, normal, settings.angularTolerance, settings.bruteForceSupportLimit);
+    manifold.featureA = selectFeature(a, normal, AngularTolerance(settings.angularTolerance),
+                                      settings.bruteForceSupportLimit);
     manifold.featureB = {FeatureType::Face, 0};
     int storage[2];
     const int* indices = nullptr;

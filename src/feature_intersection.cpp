@@ -6,7 +6,7 @@
 namespace gdc::detail {
 namespace {
 
-using Polygon2 = SmallVector<Vec2, 32>;
+using Polygon2 = SmallVector<Vec2, 16>;
 
 double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
@@ -25,28 +25,29 @@ Polygon2 project(const FeatureGeometry& feature, const Vec3& u, const Vec3& v) {
 // Sutherland–Hodgman: clip a convex polygon (or a segment, or a point) by the half-planes left
 // of each CCW edge of `clip`.
 Polygon2 clipByConvexPolygon(const Polygon2& subject, const Polygon2& clip, double tolerance) {
-    Polygon2 current = subject;
+    Polygon2 current = subject, next;
     for (std::size_t e = 0; e < clip.size() && !current.empty(); ++e) {
         const Vec2& a = clip[e];
         Vec2 edge = clip[(e + 1) % clip.size()] - a;
         double length = edge.norm();
         if (!(length > 0)) continue;
-        auto distance = [&](const Vec2& p) { return cross2(edge, p - a) / length; };  // > 0 inside
-        Polygon2 next;
+        // Signed distance scaled by the edge length (> 0 inside); the slack is scaled to match.
+        const double slack = tolerance * length;
+        auto distance = [&](const Vec2& p) { return cross2(edge, p - a); };
+        next.clear();
         const std::size_t n = current.size();
         const bool closed = n >= 3;
         for (std::size_t i = 0; i < n; ++i) {
             const Vec2& p = current[i];
             double dp = distance(p);
-            if (dp >= -tolerance) next.push_back(p);
-            if (!closed && i + 1 == n) break;
-            if (n == 1) break;
+            if (dp >= -slack) next.push_back(p);
+            if ((!closed && i + 1 == n) || n == 1) break;
             const Vec2& q = current[(i + 1) % n];
             double dq = distance(q);
-            if ((dp < -tolerance && dq > tolerance) || (dp > tolerance && dq < -tolerance))
+            if ((dp < -slack && dq > slack) || (dp > slack && dq < -slack))
                 next.push_back(p + (q - p) * (dp / (dp - dq)));
         }
-        current = next;
+        current.swap(next);
     }
     return current;
 }
@@ -119,7 +120,7 @@ void planeBasis(const Vec3& n, Vec3& u, Vec3& v) {
 }
 
 LiftedPoints intersectFeatures(const FeatureGeometry& a, const FeatureGeometry& b, const Vec3& normal,
-                               double tolerance) {
+                               double tolerance, double minimumDepth) {
     Vec3 u, v;
     planeBasis(normal, u, v);
     Polygon2 region = intersect2d(project(a, u, v), project(b, u, v), tolerance);
@@ -132,6 +133,7 @@ LiftedPoints intersectFeatures(const FeatureGeometry& a, const FeatureGeometry& 
     LiftedPoints lifted;
     for (const Vec2& q : unique) {
         double heightA = liftedHeight(a, q, u, v, normal), heightB = liftedHeight(b, q, u, v, normal);
+        if (heightA - heightB < minimumDepth) continue;
         lifted.push_back({q.x() * u + q.y() * v + 0.5 * (heightA + heightB) * normal, heightA - heightB, q});
     }
     return lifted;

@@ -10,6 +10,8 @@
 
 #include <gdcontact/manifold.hpp>
 
+#include <cmath>
+
 namespace gdc::detail {
 
 /// A feature in the common (A's) frame: its vertices and, for a face, its plane.
@@ -26,15 +28,16 @@ struct LiftedPoint {
     Vec2 planar;     // coordinates in the contact plane (for reduction)
 };
 
-using LiftedPoints = SmallVector<LiftedPoint, 32>;
+using LiftedPoints = SmallVector<LiftedPoint, 16>;
 
 /// Orthonormal basis (u, v) of the plane ⟂ n (unit) with u × v = n.
 void planeBasis(const Vec3& n, Vec3& u, Vec3& v);
 
 /// Intersects feature A and feature B in the plane ⟂ `normal` (unit, from A towards B).
-/// `tolerance` is a length: the slack of containment tests. Returns nothing when the projections
-/// do not meet (the caller then falls back to the growth-distance witness).
+/// `tolerance` is a length: the slack of containment tests. Points shallower than `minimumDepth`
+/// (the shapes do not touch there) are dropped. Returns nothing when the projections do not meet
+/// (the caller then falls back to the growth-distance witness).
 LiftedPoints intersectFeatures(const FeatureGeometry& a, const FeatureGeometry& b, const Vec3& normal,
-                               double tolerance);
+                               double tolerance, double minimumDepth = -INFINITY);
 
 }  // namespace gdc::detail

@@ -4,7 +4,7 @@
 
 namespace gdc::detail {
 
-Feature selectFeature(const Polytope& polytope, const Vec3& direction, double angularTolerance,
+Feature selectFeature(const Polytope& polytope, const Vec3& direction, const AngularTolerance& tolerance,
                       int bruteForceLimit) {
     // The region containing `direction` belongs to the support vertex, so every candidate face
     // and edge within the tolerance is incident to it (for tolerances below the polytope's
@@ -12,9 +12,8 @@ Feature selectFeature(const Polytope& polytope, const Vec3& direction, double an
     const int vertex = polytope.supportVertex(direction, bruteForceLimit);
     const int begin = polytope.vertexFaceOffsets()[vertex], end = polytope.vertexFaceOffsets()[vertex + 1];
 
-    const double cosTolerance = std::cos(angularTolerance);
     Feature best{FeatureType::Vertex, vertex};
-    double bestCos = cosTolerance;
+    double bestCos = tolerance.cosine;
     for (int i = begin; i < end; ++i) {
         int face = polytope.vertexFaces()[i];
         double c = polytope.faces()[face].normal.dot(direction);
@@ -24,8 +23,7 @@ Feature selectFeature(const Polytope& polytope, const Vec3& direction, double an
 
     // An edge qualifies when `direction` is within the tolerance of its arc: nearly perpendicular
     // to the edge, and between the two face normals once projected onto the arc's great circle.
-    const double sinTolerance = std::sin(angularTolerance);
-    double bestSin = sinTolerance;
+    double bestSin = tolerance.sine;
     for (int i = begin; i < end; ++i) {
         int edgeIndex = polytope.vertexEdges()[i];
         const Polytope::Edge& edge = polytope.edges()[edgeIndex];

@@ -10,11 +10,20 @@
 #include <gdcontact/manifold.hpp>
 #include <gdcontact/polytope.hpp>
 
+#include <cmath>
+
 namespace gdc::detail {
 
+/// The Gauss-map angular tolerance as its cosine and sine (computed once per query).
+struct AngularTolerance {
+    double cosine;
+    double sine;
+    explicit AngularTolerance(double radians) : cosine(std::cos(radians)), sine(std::sin(radians)) {}
+};
+
 /// The feature of `polytope` whose Gauss-map region is nearest `direction` (unit, local frame),
-/// within `angularTolerance` radians for faces and edges.
-Feature selectFeature(const Polytope& polytope, const Vec3& direction, double angularTolerance,
+/// within the angular tolerance for faces and edges.
+Feature selectFeature(const Polytope& polytope, const Vec3& direction, const AngularTolerance& tolerance,
                       int bruteForceLimit);
 
 /// The feature's vertices in order (1 for a vertex, 2 for an edge, the CCW loop of a face).

@@ -112,11 +112,15 @@ struct GrowthDistance {
     bool valid = false;   // false when the contraction points coincide or the cast failed
     Vec3 normal = Vec3::UnitZ();  // unit, from A towards B
     double growth = 1;    // α: < 1 overlapping, > 1 separated
-    Vec3 witnessA = Vec3::Zero();  // touching points of the scaled shapes, mapped back onto A and B
-    Vec3 witnessB = Vec3::Zero();
+    bool hasWitnesses = false;     // the box fast path finds the normal without them
+    Vec3 witnessA = Vec3::Zero();  // points of A and B whose difference is the exit point (on the
+    Vec3 witnessB = Vec3::Zero();  // centre line, inside A ∩ B when overlapping)
     int iterations = 0;
 };
 
-GrowthDistance growthDistance(const Polytope& a, const Polytope& b, const Pose& bInA, const Settings& settings);
+/// By the GJK ray cast (any polytopes), or in closed form when both are boxes unless
+/// `needWitnesses`.
+GrowthDistance growthDistance(const Polytope& a, const Polytope& b, const Pose& bInA, const Settings& settings,
+                              bool needWitnesses = true);
 
 }  // namespace gdc::detail

@@ -275,10 +275,14 @@ Polytope Polytope::box(const Vec3& halfExtents) {
     // Counter-clockwise seen from outside: −x, +x, −y, +y, −z, +z.
     const std::vector<std::vector<int>> faces = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4},
                                                  {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
-    return fromFaces(corners, faces);
+    Polytope box = fromFaces(corners, faces);
+    box.isBox_ = true;  // vertex i has the signs of bits (x: 1, y: 2, z: 4), as built above
+    box.boxHalfExtents_ = halfExtents;
+    return box;
 }
 
 int Polytope::supportVertex(const Vec3& direction, int bruteForceLimit) const {
+    if (isBox_) return (direction.x() > 0 ? 1 : 0) | (direction.y() > 0 ? 2 : 0) | (direction.z() > 0 ? 4 : 0);
     const int count = static_cast<int>(vertices_.size());
     int best = 0;
     double bestValue = vertices_[0].dot(direction);

@@ -47,7 +47,7 @@ int reduceContacts(const LiftedPoints& points, int maxCount, int* chosen) {
         return count;
     }
     if (maxCount <= 0) return 0;
-    SmallVector<char, 32> taken;
+    SmallVector<char, 16> taken;
     for (int i = 0; i < count; ++i) taken.push_back(0);
     auto take = [&](int index, int slot) { chosen[slot] = index, taken[index] = 1; };
 

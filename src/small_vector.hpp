@@ -2,6 +2,7 @@
 // the heap only for very large faces, so the collide hot path does not allocate.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <vector>
@@ -21,6 +22,15 @@ public:
         ++size_;
     }
     void clear() { size_ = 0, spill_.clear(); }
+    void swap(SmallVector& other) {
+        if (size_ <= InlineCapacity && other.size_ <= InlineCapacity) {
+            std::swap_ranges(inline_.begin(), inline_.begin() + std::max(size_, other.size_), other.inline_.begin());
+        } else {
+            std::swap(inline_, other.inline_);
+        }
+        spill_.swap(other.spill_);
+        std::swap(size_, other.size_);
+    }
     std::size_t size() const { return size_; }
     bool empty() const { return size_ == 0; }
     T* data() { return size_ > InlineCapacity ? spill_.data() : inline_.data(); }
@@ -37,7 +47,7 @@ public:
     const T* end() const { return data() + size_; }
 
 private:
-    std::array<T, InlineCapacity> inline_{};
+    std::array<T, InlineCapacity> inline_;  // not value-initialised: only [0, size) is ever read
     std::vector<T> spill_;
     std::size_t size_ = 0;
 };

@@ -88,3 +88,20 @@ TEST_CASE("witness points lie on the surfaces of A and B") {
         CHECK(along.cross(centres).norm() <= 1e-9 * (1 + along.norm() * centres.norm()));
     }
 }
+
+TEST_CASE("the closed-form growth distance of two boxes equals the GJK ray cast") {
+    const Polytope boxA = Polytope::box(Vec3(0.5, 0.3, 0.8)), boxB = Polytope::box(Vec3(0.2, 0.6, 0.4));
+    const std::vector<Vec3> corners = boxB.vertices();
+    const Polytope hullB = Polytope::fromPoints(corners);  // the same box, not flagged as one
+    REQUIRE_FALSE(hullB.isBox());
+    std::mt19937 random(41);
+    std::uniform_real_distribution<double> coordinate(-1.5, 1.5);
+    for (int i = 0; i < 500; ++i) {
+        Pose bInA = makePose(Vec3(coordinate(random), coordinate(random), coordinate(random)), randomRotation(random));
+        auto closedForm = growthDistance(boxA, boxB, bInA, {}, /*needWitnesses=*/false);
+        auto cast = growthDistance(boxA, hullB, bInA, {});
+        REQUIRE(closedForm.valid == cast.valid);
+        CHECK(closedForm.growth == Approx(cast.growth).epsilon(1e-9));
+        CHECK(closedForm.normal.dot(cast.normal) > 1 - 1e-9);
+    }
+}

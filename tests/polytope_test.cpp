@@ -191,3 +191,16 @@ TEST_CASE("hill-climbing support agrees with brute force on a 4096-vertex near-s
         CHECK(sphere.vertices()[climbed].dot(direction) == Approx(sphere.vertices()[brute].dot(direction)).epsilon(1e-15));
     }
 }
+
+TEST_CASE("a box's closed-form support agrees with brute force over its vertices") {
+    Polytope box = Polytope::box(Vec3(0.3, 1.1, 2.0));
+    REQUIRE(box.isBox());
+    std::mt19937 random(12);
+    std::normal_distribution<double> gauss;
+    for (int i = 0; i < 200; ++i) {
+        Vec3 direction(gauss(random), gauss(random), gauss(random));
+        double best = -INFINITY;
+        for (const Vec3& v : box.vertices()) best = std::max(best, v.dot(direction));
+        CHECK(box.vertices()[box.supportVertex(direction)].dot(direction) == Approx(best).epsilon(1e-15));
+    }
+}

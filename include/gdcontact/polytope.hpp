@@ -61,6 +61,10 @@ public:
     /// Largest distance from the centroid to a vertex.
     double radius() const { return radius_; }
     double volume() const { return volume_; }
+    /// True for polytopes made by box(): their support mapping and growth distance take exact
+    /// closed-form fast paths that give the same answers as the general algorithms.
+    bool isBox() const { return isBox_; }
+    const Vec3& boxHalfExtents() const { return boxHalfExtents_; }
 
     /// Index of a vertex maximising direction·vertex (brute force up to `bruteForceLimit`
     /// vertices, hill climbing over adjacency above it).
@@ -79,6 +83,8 @@ private:
     Vec3 centroid_ = Vec3::Zero();
     double radius_ = 0.0;
     double volume_ = 0.0;
+    bool isBox_ = false;
+    Vec3 boxHalfExtents_ = Vec3::Zero();
 };
 
 }  // namespace gdc
