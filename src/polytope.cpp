@@ -26,6 +26,21 @@ Vec3 newellNormal(const std::vector<Vec3>& vertices, const std::vector<int>& loo
     return normal;  // length = 2 · area
 }
 
+// A face loop must turn one way only (no reflex corner) and exactly once around (a bow tie
+// turns both ways, a pentagram twice): the turning angles must sum to 2π.
+bool isConvexLoop(const std::vector<Vec3>& vertices, const std::vector<int>& loop, const Vec3& normal) {
+    double turning = 0;
+    const std::size_t n = loop.size();
+    for (std::size_t i = 0; i < n; ++i) {
+        Vec3 in = vertices[loop[i]] - vertices[loop[(i + n - 1) % n]];
+        Vec3 out = vertices[loop[(i + 1) % n]] - vertices[loop[i]];
+        double sine = normal.dot(in.cross(out)), cosine = in.dot(out);
+        if (sine < -1e-9 * in.norm() * out.norm()) return false;
+        turning += std::atan2(sine, cosine);
+    }
+    return std::abs(turning - 2 * M_PI) < 1e-6;
+}
+
 struct UnionFind {
     std::vector<int> parent;
     explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
@@ -133,9 +148,13 @@ Polytope Polytope::fromFaces(const std::vector<Vec3>& vertices, const std::vecto
     for (const Vec3& v : vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
     const double size = (hi - lo).norm();
     if (!(size > 0)) throw InvalidInput("all vertices coincide");
-    for (std::size_t f = 0; f < faces.size(); ++f)
-        if (newellNormal(vertices, faces[f]).norm() <= 1e-12 * size * size)
-            throw InvalidInput(faceName(f) + " has zero area (collinear vertices)");
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+        const Vec3 normal = newellNormal(vertices, faces[f]);
+        if (normal.norm() <= 1e-12 * size * size)
+            throw InvalidInput(faceName(f) + " has zero area (collinear vertices, or a self-intersecting loop)");
+        if (!isConvexLoop(vertices, faces[f], normal.normalized()))
+            throw InvalidInput(faceName(f) + " is not a convex polygon (self-intersecting or reflex)");
+    }
 
     Polytope p;
     std::vector<std::vector<int>> loops = mergeCoplanarFaces(vertices, faces, settings.coplanarTolerance);

@@ -167,6 +167,19 @@ TEST_CASE("bad explicit faces are refused with a message naming the problem") {
         for (const auto& q : quads) triangles.push_back({q[0], q[1], q[2]}), triangles.push_back({q[0], q[2], q[3]});
         requireInvalid([&] { Polytope::fromFaces(dented, triangles); }, "convex");
     }
+    SECTION("a self-intersecting (bow-tie) face") {
+        auto bowTie = quads;
+        bowTie[1] = {1, 7, 3, 5};  // the +x face's corners in crossing order
+        requireInvalid([&] { Polytope::fromFaces(corners, bowTie); }, "self-intersecting");
+    }
+    SECTION("a face that winds twice (a pentagram)") {
+        std::vector<Vec3> prism;
+        for (double z : {0.0, 1.0})
+            for (int i = 0; i < 5; ++i) prism.emplace_back(std::cos(i * 2 * M_PI / 5), std::sin(i * 2 * M_PI / 5), z);
+        std::vector<std::vector<int>> faces = {{4, 3, 2, 1, 0}, {5, 7, 9, 6, 8}};
+        for (int i = 0; i < 5; ++i) faces.push_back({i, (i + 1) % 5, (i + 1) % 5 + 5, i + 5});
+        requireInvalid([&] { Polytope::fromFaces(prism, faces); }, "not a convex polygon");
+    }
     SECTION("a vertex index out of range") {
         auto bad = quads;
         bad[0][1] = 42;

@@ -1,0 +1,297 @@
+// createConvex: validation, ODE's own colliders on the geom, hull lifetime, plain dCreateConvex
+// geoms after install(), and polytopeOf / poseOf.
+#include <gdcontact/ode.hpp>
+
+#include "ode_support.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <malloc.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+using namespace gdc;
+using namespace gdc::ode::test;
+
+namespace {
+
+// ODE's demo cube in dCreateConvex's layout (half size 0.25), counter-clockwise from outside.
+struct OdeCube {
+    std::vector<dReal> planes{1, 0, 0, 0.25, 0, 1, 0, 0.25, 0, 0, 1, 0.25,
+                              -1, 0, 0, 0.25, 0, -1, 0, 0.25, 0, 0, -1, 0.25};
+    std::vector<dReal> points{0.25, 0.25, 0.25, -0.25, 0.25, 0.25, 0.25, -0.25, 0.25, -0.25, -0.25, 0.25,
+                              0.25, 0.25, -0.25, -0.25, 0.25, -0.25, 0.25, -0.25, -0.25, -0.25, -0.25, -0.25};
+    std::vector<unsigned> polygons{4, 0, 2, 6, 4,   // +x
+                                   4, 1, 0, 4, 5,   // +y
+                                   4, 0, 1, 3, 2,   // +z
+                                   4, 3, 1, 5, 7,   // -x
+                                   4, 2, 3, 7, 6,   // -y
+                                   4, 5, 4, 6, 7};  // -z
+    dGeomID create(dSpaceID space = 0) const {
+        return gdc::ode::createConvex(space, planes.data(), 6, points.data(), 8, polygons.data());
+    }
+};
+
+}  // namespace
+
+TEST_CASE("createConvex in dCreateConvex's layout accepts ODE's demo cube", "[ode][convex]") {
+    OdeSession session;
+    OdeCube cube;
+    dGeomID geom = cube.create();
+    REQUIRE(dGeomGetClass(geom) == dConvexClass);
+    const auto hull = gdc::ode::polytopeOf(geom);
+    REQUIRE(hull);
+    CHECK(hull->vertices().size() == 8);
+    CHECK(hull->faces().size() == 6);
+    CHECK(hull->volume() == Approx(0.125));
+    dGeomDestroy(geom);
+}
+
+TEST_CASE("createConvex rejects bad dCreateConvex data with a message naming the fault", "[ode][convex]") {
+    OdeSession session;
+    const std::size_t registeredBefore = gdc::ode::liveConvexCount();
+    SECTION("clockwise polygon") {
+        OdeCube cube;
+        std::reverse(cube.polygons.begin() + 1, cube.polygons.begin() + 5);  // +x polygon: 4,6,2,0
+        CHECK_THROWS_WITH(cube.create(), Catch::Contains("plane 0") && Catch::Contains("clockwise"));
+    }
+    SECTION("self-intersecting polygon") {
+        OdeCube cube;
+        std::swap(cube.polygons[2], cube.polygons[3]);  // +x polygon: 0,6,2,4, a bow tie
+        CHECK_THROWS_WITH(cube.create(), Catch::Contains("plane 0") && Catch::Contains("convex polygon"));
+    }
+    SECTION("plane offset that does not match its polygon") {
+        OdeCube cube;
+        cube.planes[4 * 2 + 3] = 0.3;
+        CHECK_THROWS_WITH(cube.create(), Catch::Contains("plane 2") && Catch::Contains("offset"));
+    }
+    SECTION("normal that is not unit") {
+        OdeCube cube;
+        cube.planes[4 * 1 + 1] = 2.0;
+        CHECK_THROWS_WITH(cube.create(), Catch::Contains("plane 1") && Catch::Contains("unit"));
+    }
+    SECTION("a point outside a plane: not convex") {
+        OdeCube cube;
+        // A ninth point, used by no polygon, above the +z plane.
+        cube.points.insert(cube.points.end(), {0.0, 0.0, 0.4});
+        CHECK_THROWS_WITH(gdc::ode::createConvex(0, cube.planes.data(), 6, cube.points.data(), 9, cube.polygons.data()),
+                          Catch::Contains("point 8") && Catch::Contains("not convex"));
+    }
+    SECTION("polygon index out of range") {
+        OdeCube cube;
+        cube.polygons[1] = 42;
+        CHECK_THROWS_WITH(cube.create(), Catch::Contains("point 42"));
+    }
+    SECTION("too few planes, null arrays, non-finite points") {
+        OdeCube cube;
+        CHECK_THROWS_AS(gdc::ode::createConvex(0, cube.planes.data(), 3, cube.points.data(), 8, cube.polygons.data()), InvalidInput);
+        CHECK_THROWS_AS(gdc::ode::createConvex(0, nullptr, 6, cube.points.data(), 8, cube.polygons.data()), InvalidInput);
+        cube.points[5] = NAN;
+        CHECK_THROWS_WITH(cube.create(), Catch::Contains("point 1") && Catch::Contains("finite"));
+    }
+    SECTION("hull of coplanar points") {
+        const std::vector<dReal> flat{0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0.5, 0.5, 0};
+        CHECK_THROWS_AS(gdc::ode::createConvex(0, flat.data(), 5), InvalidInput);
+        CHECK_THROWS_AS(gdc::ode::createConvex(0, flat.data(), 3), InvalidInput);
+    }
+    CHECK(gdc::ode::liveConvexCount() == registeredBefore);  // nothing registered by a rejected call
+}
+
+TEST_CASE("ODE's own sphere and ray colliders see the hull of a createConvex geom", "[ode][convex]") {
+    OdeSession session;
+    const auto corners = boxCorners(Vec3(0.5, 0.5, 0.5));
+    dGeomID convex = gdc::ode::createConvex(0, corners.data(), 8);
+    dGeomID sphere = dCreateSphere(0, 0.2);
+    dGeomSetPosition(sphere, 0, 0, 0.65);  // 0.05 into the top face
+    const auto contacts = collideThroughOde(sphere, convex, 4);
+    REQUIRE(contacts.size() >= 1);
+    CHECK(contacts[0].depth == Approx(0.05).margin(1e-9));
+    CHECK(toVec(contacts[0].normal).z() == Approx(1.0).margin(1e-9));
+    dGeomID ray = dCreateRay(0, 10);
+    dGeomRaySet(ray, 0.1, 0.2, 5, 0, 0, -1);
+    const auto hits = collideThroughOde(ray, convex, 1);
+    REQUIRE(hits.size() == 1);
+    CHECK(hits[0].depth == Approx(4.5).margin(1e-9));  // distance from the ray start to the top face
+    for (dGeomID geom : {convex, sphere, ray}) dGeomDestroy(geom);
+}
+
+TEST_CASE("hull data is released with its geom: creating and destroying in a loop does not grow memory",
+          "[ode][convex][lifetime]") {
+    OdeSession session;
+    OdeCube cube;
+    const auto corners = boxCorners(Vec3(0.3, 0.4, 0.5));
+    const std::size_t before = gdc::ode::liveConvexCount();
+    auto cycle = [&] {
+        dGeomID a = gdc::ode::createConvex(0, corners.data(), 8);
+        dGeomID b = cube.create();
+        CHECK(gdc::ode::liveConvexCount() == before + 2);
+        dGeomDestroy(a);
+        dGeomDestroy(b);
+        // Space cleanup destroys its geoms: their hulls must go too.
+        dSpaceID space = dSimpleSpaceCreate(0);
+        for (int i = 0; i < 5; ++i) gdc::ode::createConvex(space, corners.data(), 8);
+        CHECK(gdc::ode::liveConvexCount() == before + 5);
+        dSpaceDestroy(space);
+        CHECK(gdc::ode::liveConvexCount() == before);
+    };
+    for (int i = 0; i < 50; ++i) cycle();  // warm up allocator pools
+    const std::size_t heapBefore = mallinfo2().uordblks;
+    for (int i = 0; i < 2000; ++i) cycle();
+    const std::size_t heapAfter = mallinfo2().uordblks;
+    // One cycle allocates ~10 KB (7 hulls); a leak of any of it would show as megabytes.
+    CHECK(heapAfter <= heapBefore + 64 * 1024);
+    CHECK(gdc::ode::liveConvexCount() == before);
+}
+
+TEST_CASE("a geom at the address of a destroyed createConvex geom does not inherit its hull",
+          "[ode][convex][lifetime]") {
+    OdeSession session;
+    OdeCube cube;
+    const auto corners = boxCorners(Vec3(0.3, 0.4, 0.5));
+    // Try until the allocator hands out the same address again (it normally does at once).
+    bool reused = false;
+    for (int attempt = 0; attempt < 20 && !reused; ++attempt) {
+        dGeomID ours = gdc::ode::createConvex(0, corners.data(), 8);
+        dGeomDestroy(ours);
+        dGeomID plain = dCreateConvex(0, cube.planes.data(), 6, cube.points.data(), 8, cube.polygons.data());
+        reused = plain == ours;
+        CHECK(gdc::ode::polytopeOf(plain) == nullptr);
+        dGeomDestroy(plain);
+    }
+    CHECK(reused);  // otherwise the test proved nothing
+}
+
+namespace {
+
+int freesSeen = 0;
+void countingFree(void* pointer, dsizeint) {
+    ++freesSeen;
+    std::free(pointer);
+}
+
+}  // namespace
+
+TEST_CASE("when the program replaces ODE's free handler, stale hulls are still not used",
+          "[ode][convex][lifetime]") {
+    OdeSession session;
+    OdeCube cube;
+    const auto corners = boxCorners(Vec3(0.3, 0.4, 0.5));
+    dGeomID survivor = gdc::ode::createConvex(0, corners.data(), 8);
+    dFreeFunction* previous = dGetFreeHandler();
+    dSetFreeHandler(&countingFree);  // gdcontact no longer sees geoms being freed
+    dGeomID ours = gdc::ode::createConvex(0, corners.data(), 8);  // puts gdcontact's hook back in front
+    dSetFreeHandler(&countingFree);
+    dGeomDestroy(ours);  // unseen by gdcontact
+    CHECK(freesSeen > 0);
+    dGeomID plain = dCreateConvex(0, cube.planes.data(), 6, cube.points.data(), 8, cube.polygons.data());
+    setPose(plain, Pose{rotationAbout(Vec3(1, 2, 3), 0.4), Vec3(1, 2, 3)});
+    CHECK(gdc::ode::polytopeOf(plain) == nullptr);  // whether or not the address was reused
+    // A geom registered before the handler changed and still alive keeps its hull.
+    setPose(survivor, Pose{rotationAbout(Vec3(3, 1, 2), 1.1), Vec3(-1, 0, 4)});
+    REQUIRE(gdc::ode::polytopeOf(survivor) != nullptr);
+    CHECK(gdc::ode::polytopeOf(survivor)->volume() == Approx(0.48));
+    dGeomDestroy(plain);
+    dGeomDestroy(survivor);
+    dSetFreeHandler(previous);
+}
+
+namespace {
+
+// Runs `body` in a child process with stderr captured; returns (exit status, stderr text).
+template <class Body>
+std::pair<int, std::string> runInChild(Body body) {
+    int pipeEnds[2];
+    REQUIRE(pipe(pipeEnds) == 0);
+    std::fflush(nullptr);
+    const pid_t child = fork();
+    REQUIRE(child >= 0);
+    if (child == 0) {
+        dup2(pipeEnds[1], 2);
+        close(pipeEnds[0]);
+        body();
+        _exit(0);
+    }
+    close(pipeEnds[1]);
+    std::string text;
+    char buffer[512];
+    for (ssize_t n; (n = read(pipeEnds[0], buffer, sizeof buffer)) > 0;) text.append(buffer, static_cast<std::size_t>(n));
+    close(pipeEnds[0]);
+    int status = 0;
+    waitpid(child, &status, 0);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
+}
+
+}  // namespace
+
+TEST_CASE("a plain dCreateConvex geom after install() fails loudly, naming createConvex", "[ode][convex]") {
+    OdeCube cube;
+    const auto [status, text] = runInChild([&] {
+        dInitODE2(0);
+        gdc::ode::install();
+        dGeomID plain = dCreateConvex(0, cube.planes.data(), 6, cube.points.data(), 8, cube.polygons.data());
+        dGeomID box = dCreateBox(0, 1, 1, 1);
+        dGeomSetPosition(box, 0, 0, 0.7);
+        dContactGeom contacts[4];
+        dCollide(box, plain, 4, contacts, sizeof(dContactGeom));  // ODE's error handler exits
+    });
+    CHECK(status != 0);
+    CHECK_THAT(text, Catch::Contains("dCreateConvex") && Catch::Contains("gdc::ode::createConvex"));
+}
+
+TEST_CASE("a failure inside gdcontact is reported through dMessage and gives no contacts", "[ode][convex]") {
+    OdeSession session;
+    static std::string reported;
+    dMessageFunction* previous = dGetMessageHandler();
+    dSetMessageHandler([](int, const char* format, va_list arguments) {
+        char buffer[1024];
+        std::vsnprintf(buffer, sizeof buffer, format, arguments);
+        reported = buffer;
+    });
+    dGeomID a = dCreateBox(0, 1, 1, 1), b = dCreateBox(0, 1, 1, 1);
+    dGeomSetPosition(a, NAN, 0, 0);
+    dContactGeom contacts[4];
+    CHECK(gdc::ode::collide(a, b, 4, contacts, sizeof(dContactGeom)) == 0);
+    CHECK_THAT(reported, Catch::Contains("gdcontact"));
+    dSetMessageHandler(previous);
+    dGeomDestroy(a);
+    dGeomDestroy(b);
+}
+
+TEST_CASE("polytopeOf and poseOf describe box and convex geoms, offsets included", "[ode][convex]") {
+    OdeSession session;
+    dGeomID box = dCreateBox(0, 1, 2, 3);
+    const auto boxHull = gdc::ode::polytopeOf(box);
+    REQUIRE(boxHull);
+    CHECK(boxHull->volume() == Approx(6.0));
+    CHECK(gdc::ode::polytopeOf(box) == boxHull);  // cached: one polytope per box size
+    dGeomBoxSetLengths(box, 1, 1, 1);
+    CHECK(gdc::ode::polytopeOf(box)->volume() == Approx(1.0));
+    dGeomID sphere = dCreateSphere(0, 1);
+    CHECK(gdc::ode::polytopeOf(sphere) == nullptr);
+    dGeomID plane = dCreatePlane(0, 0, 0, 1, 0);
+    CHECK_THROWS_AS(gdc::ode::poseOf(plane), InvalidInput);
+
+    dWorldID world = dWorldCreate();
+    dBodyID body = dBodyCreate(world);
+    dBodySetPosition(body, 1, 2, 3);
+    const Mat3 bodyRotation = rotationAbout(Vec3(0, 0, 1), 0.5);
+    dMatrix3 matrix;
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) matrix[4 * r + c] = bodyRotation(r, c);
+        matrix[4 * r + 3] = 0;
+    }
+    dBodySetRotation(body, matrix);
+    dGeomSetBody(box, body);
+    dGeomSetOffsetPosition(box, 1, 0, 0);
+    const Pose pose = gdc::ode::poseOf(box);
+    CHECK((pose.position - (Vec3(1, 2, 3) + bodyRotation * Vec3(1, 0, 0))).norm() < 1e-12);
+    CHECK((pose.rotation - bodyRotation).norm() < 1e-12);
+    for (dGeomID geom : {box, sphere, plane}) dGeomDestroy(geom);
+    dWorldDestroy(world);
+}
