@@ -282,6 +282,18 @@ void Polytope::buildTopology(double size) {
     }
     radius_ = 0;
     for (const Vec3& v : vertices_) radius_ = std::max(radius_, (v - centroid_).norm());
+
+    // Seeds for hill climbing: the brute-force supports of the 26 directions of a cube's faces,
+    // edges and corners (duplicates removed).
+    supportSeeds_.clear();
+    for (int x = -1; x <= 1; ++x)
+        for (int y = -1; y <= 1; ++y)
+            for (int z = -1; z <= 1; ++z) {
+                if (x == 0 && y == 0 && z == 0) continue;
+                int seed = supportVertex(Vec3(x, y, z), vertexCount);
+                if (std::find(supportSeeds_.begin(), supportSeeds_.end(), seed) == supportSeeds_.end())
+                    supportSeeds_.push_back(seed);
+            }
 }
 
 Polytope Polytope::box(const Vec3& halfExtents) {
@@ -313,14 +325,23 @@ int Polytope::supportVertex(const Vec3& direction, int bruteForceLimit) const {
         return best;
     }
     // Hill climbing: on a convex polytope a vertex with no strictly better neighbour is a global
-    // maximum (the maximisers form a face, and any other vertex has an ascending edge).
+    // maximum (the maximisers form a face, and any other vertex has an ascending edge). It starts
+    // from the best of a few precomputed seeds (the supports of 26 directions), so a climb
+    // crosses at most a small cap of the hull instead of half of it.
+    for (int seed : supportSeeds_) {
+        double value = vertices_[seed].dot(direction);
+        if (value > bestValue) bestValue = value, best = seed;
+    }
     for (bool improved = true; improved;) {
         improved = false;
-        for (int i = neighborOffsets_[best]; i < neighborOffsets_[best + 1]; ++i) {
+        const int begin = neighborOffsets_[best], end = neighborOffsets_[best + 1];  // of this vertex
+        int next = best;
+        for (int i = begin; i < end; ++i) {
             int candidate = neighbors_[i];
             double value = vertices_[candidate].dot(direction);
-            if (value > bestValue) bestValue = value, best = candidate, improved = true;
+            if (value > bestValue) bestValue = value, next = candidate, improved = true;
         }
+        best = next;
     }
     return best;
 }

@@ -80,6 +80,7 @@ private:
     std::vector<Edge> edges_;
     std::vector<int> neighborOffsets_, neighbors_;
     std::vector<int> vertexFaceOffsets_, vertexFaces_, vertexEdges_;
+    std::vector<int> supportSeeds_;  // hill-climbing starts: supports of 26 fixed directions
     Vec3 centroid_ = Vec3::Zero();
     double radius_ = 0.0;
     double volume_ = 0.0;
