@@ -13,5 +13,7 @@ install_packages() {
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}"
 }
 
-# Packages needed to build the library, samples and tests.
-BUILD_PACKAGES=(build-essential cmake pkg-config libeigen3-dev libqhull-dev libode-dev libccd-dev catch2)
+# Packages needed to build the library, samples, viewer and tests, and to run the viewer's tests
+# headless (Xvfb with Mesa's software OpenGL).
+BUILD_PACKAGES=(build-essential cmake pkg-config libeigen3-dev libqhull-dev libode-dev libccd-dev catch2
+                libglfw3-dev libimgui-dev libstb-dev libgl-dev xvfb xauth libgl1-mesa-dri)

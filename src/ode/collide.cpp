@@ -100,9 +100,18 @@ int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int
 
     // One fixed order per pair, so collide(a,b) and collide(b,a) make the same core call and
     // their answers are exact mirrors (ODE calls fn(b,a) for dCollide(a,b) on same-class pairs).
-    const bool swapped = shape1.kind == Kind::Plane ||
-                         (shape2.kind == Kind::Polytope &&
-                          std::less<const void*>{}(static_cast<const void*>(o2), static_cast<const void*>(o1)));
+    // The order comes from the geoms' positions, not their addresses: a world rebuilt in the same
+    // state must replay exactly, and allocation reuses addresses in another order (the address
+    // only breaks exact ties).
+    auto before = [](const Shape& x, dGeomID geomX, const Shape& y, dGeomID geomY) {
+        const Vec3& p = x.pose.position;
+        const Vec3& q = y.pose.position;
+        if (p.x() != q.x()) return p.x() < q.x();
+        if (p.y() != q.y()) return p.y() < q.y();
+        if (p.z() != q.z()) return p.z() < q.z();
+        return std::less<const void*>{}(static_cast<const void*>(geomX), static_cast<const void*>(geomY));
+    };
+    const bool swapped = shape1.kind == Kind::Plane || (shape2.kind == Kind::Polytope && before(shape2, o2, shape1, o1));
     const Shape& a = swapped ? shape2 : shape1;
     const Shape& b = swapped ? shape1 : shape2;
 

@@ -1,0 +1,132 @@
+#include "scene_shapes.hpp"
+
+#include <limits>
+
+namespace gdc::viewer {
+
+Pose poseFromOde(const dReal* position, const dReal* rotation) {
+    Pose pose;
+    for (int row = 0; row < 3; ++row) {
+        for (int column = 0; column < 3; ++column) pose.rotation(row, column) = rotation[4 * row + column];
+        pose.position[row] = position[row];
+    }
+    return pose;
+}
+
+void SceneShapes::clear() {
+    cache_.clear();
+    shapes_.clear();
+}
+
+void SceneShapes::update(dSpaceID space) {
+    shapes_.clear();
+    skipped_ = 0;
+    collect(space);
+}
+
+void SceneShapes::collect(dSpaceID space) {
+    const int count = dSpaceGetNumGeoms(space);
+    for (int i = 0; i < count; ++i) {
+        dGeomID geom = dSpaceGetGeom(space, i);
+        if (dGeomIsSpace(geom)) collect(reinterpret_cast<dSpaceID>(geom));
+        else add(geom, geom, Pose{}, false);
+    }
+}
+
+void SceneShapes::add(dGeomID placed, dGeomID geom, const Pose& parent, bool nested) {
+    const int type = dGeomGetClass(geom);
+    if (type == dPlaneClass) {
+        dVector4 p;
+        dGeomPlaneGetParams(geom, p);
+        DrawShape shape;
+        shape.geom = geom;
+        shape.placed = placed;
+        const Vec3 n(p[0], p[1], p[2]);
+        const double length = n.norm();
+        if (!(length > 0.0)) return;
+        shape.planeNormal = n / length;
+        shape.planeOffset = p[3] / length;
+        shapes_.push_back(shape);
+        return;
+    }
+    if (type == dGeomTransformClass) {
+        // Deprecated in ODE 0.16 in favour of body offsets, but still in use by older programs.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
+        dGeomID inner = dGeomTransformGetGeom(geom);
+#pragma GCC diagnostic pop
+        if (inner == nullptr) return;
+        const Pose outer = poseFromOde(dGeomGetPosition(geom), dGeomGetRotation(geom));
+        add(placed, inner, outer, true);
+        return;
+    }
+    auto mesh = meshOf(geom);
+    if (!mesh) {
+        ++skipped_;
+        return;
+    }
+    DrawShape shape;
+    shape.geom = geom;
+    shape.placed = placed;
+    shape.body = dGeomGetBody(placed);
+    shape.mesh = std::move(mesh);
+    // A geom inside a transform stores its pose relative to the transform; any other placeable
+    // geom reports its world pose, body offset included.
+    const Pose own = poseFromOde(dGeomGetPosition(geom), dGeomGetRotation(geom));
+    shape.pose = nested ? Pose{parent.rotation * own.rotation, parent.apply(own.position)} : own;
+    shapes_.push_back(shape);
+}
+
+std::shared_ptr<const ConvexMesh> SceneShapes::meshOf(dGeomID geom) {
+    const int type = dGeomGetClass(geom);
+    Cached& cached = cache_[geom];
+    if (type == dBoxClass) {
+        dVector3 lengths;
+        dGeomBoxGetLengths(geom, lengths);
+        const Vec3 size(lengths[0], lengths[1], lengths[2]);
+        if (!cached.mesh || cached.source != nullptr || cached.boxLengths != size) {
+            cached = Cached{size, nullptr, std::make_shared<const ConvexMesh>(ConvexMesh::box(0.5 * size))};
+        }
+        return cached.mesh;
+    }
+    if (type == dConvexClass) {
+        std::shared_ptr<const Polytope> polytope = lookup_ ? lookup_(geom) : nullptr;
+        if (polytope == nullptr) return nullptr;  // a dConvex nobody told us the shape of
+        if (!cached.mesh || cached.source != polytope) {
+            auto mesh = std::make_shared<const ConvexMesh>(ConvexMesh::fromPolytope(*polytope));
+            cached = Cached{Vec3::Zero(), std::move(polytope), std::move(mesh)};
+        }
+        return cached.mesh;
+    }
+    cache_.erase(geom);
+    return nullptr;
+}
+
+std::optional<PickHit> SceneShapes::pick(const Ray& ray) const {
+    std::optional<PickHit> best;
+    for (std::size_t i = 0; i < shapes_.size(); ++i) {
+        const DrawShape& shape = shapes_[i];
+        const auto t = shape.isPlane() ? intersectHalfSpace(ray, shape.planeNormal, shape.planeOffset)
+                                       : intersect(ray, *shape.mesh, shape.pose);
+        if (t && (!best || *t < best->distance)) best = PickHit{int(i), *t, ray.at(*t)};
+    }
+    return best;
+}
+
+bool SceneShapes::bounds(Vec3& low, Vec3& high) const {
+    low = Vec3::Constant(std::numeric_limits<double>::infinity());
+    high = -low;
+    bool any = false;
+    for (const auto& shape : shapes_) {
+        if (shape.isPlane()) continue;
+        for (const auto& v : shape.mesh->vertices) {
+            const Vec3 w = shape.pose.apply(v);
+            low = low.cwiseMin(w);
+            high = high.cwiseMax(w);
+            any = true;
+        }
+    }
+    return any;
+}
+
+}  // namespace gdc::viewer

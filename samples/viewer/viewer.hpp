@@ -1,0 +1,158 @@
+// The interactive viewer: a GLFW window with an OpenGL 2.1 context and a Dear ImGui panel around
+// one of the paper's scenes (samples/scenes).
+//
+// Interactively the simulation runs on its own thread, in fixed steps paced by a wall-clock
+// accumulator. The window thread holds the scene lock only to handle input, build the panel and
+// copy what it will draw (poses, contacts); OpenGL drawing and buffer swaps happen outside the
+// lock, so the GPU (or software rasteriser) never blocks a simulation step. A slow frame costs
+// frames, not simulated time; a machine too slow for real time runs the simulation slower instead
+// of queueing ever more steps.
+#pragma once
+
+#include "camera.hpp"
+#include "image.hpp"
+#include "renderer.hpp"
+#include "scene_shapes.hpp"
+#include "spring_drag.hpp"
+
+#include <scene.hpp>
+
+#include <atomic>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+
+struct GLFWwindow;
+
+namespace gdc::viewer {
+
+struct ViewerOptions {
+    std::string scene = "brick_wall";
+    int width = 1280, height = 720;
+    /// 0: interactive until the window closes. N > 0: draw N frames, then exit (headless use).
+    int frames = 0;
+    /// With frames > 0: advance the simulation by wall-clock time as the interactive loop does
+    /// and print the frame rate (for measuring). Without: every frame advances exactly 1/60 s of
+    /// simulated time, so a screenshot is reproducible.
+    bool realtime = false;
+    std::string screenshot;  // PNG written after the last frame (frames > 0)
+    bool panel = true;       // the ImGui panel
+    bool contacts = true;    // contact overlay
+    std::optional<scenes::Method> method;
+    bool scripted = false;   // let the scene's scripted user act (builder, remover, push)
+    bool visible = true;     // show the window (false for tests)
+    bool fit = false;        // frame the bodies as they are at the end before the screenshot
+};
+
+/// Per-frame timings of the loop (seconds of wall-clock time).
+struct FrameTimes {
+    int frames = 0;
+    int steps = 0;
+    double wallSeconds = 0.0;
+    double simulateSeconds = 0.0;  // scene.step() and the spring, all steps of all frames
+    double drawSeconds = 0.0;      // GL drawing of scene and panel, and the buffer swap
+    double snapshotSeconds = 0.0;  // input, panel and the copy of the scene, under the scene lock
+    double collisionSeconds = 0.0;  // the scenes' own measure, summed over steps
+    double solverSeconds = 0.0;
+    double simulatedSeconds = 0.0;
+};
+
+class Viewer {
+public:
+    /// Opens the window and loads the scene. Throws std::runtime_error when no window or GL
+    /// context can be made (no X server), std::invalid_argument for an unknown scene name.
+    explicit Viewer(const ViewerOptions& options);
+    ~Viewer();
+    Viewer(const Viewer&) = delete;
+    Viewer& operator=(const Viewer&) = delete;
+
+    /// Runs as the options say (interactive, or N frames then the screenshot). Returns an exit code.
+    int run();
+
+    // --- the pieces run() is made of, public for the tests and for scripted use ---
+    void loadScene(const std::string& name);
+    scenes::Scene& scene() { return *scene_; }
+    /// Advance the simulation by whole steps covering `seconds` (at least one step when > 0).
+    void simulate(double seconds);
+    /// Draw one frame (scene, overlays, panel) into the back buffer.
+    void draw();
+    /// What draw() would draw of the scene (shapes, colours, contacts, spring), as a copy.
+    FrameInput snapshot();
+    /// The back buffer as an image (call after draw(), before presenting).
+    Image capture();
+    void present();
+
+    /// Mouse interaction in window coordinates (pixels, top-left origin), as a person does it.
+    /// grab: picks the nearest shape under the cursor; true if it is a dynamic body (now dragged).
+    bool grab(double x, double y);
+    void dragTo(double x, double y);
+    void release();
+    /// Removes the body under the cursor if the scene lets it be removed (a brick).
+    bool removeAt(double x, double y);
+    /// The paper's downward push on the top object, for `seconds` of simulated time.
+    void push(double seconds = 0.5);
+
+    const OrbitCamera& camera() const { return camera_; }
+    OrbitCamera& camera() { return camera_; }
+    const SceneShapes& shapes() const { return shapes_; }
+    const SpringDrag& drag() const { return drag_; }
+    int windowWidth() const;
+    int windowHeight() const;
+    const FrameTimes& times() const { return times_; }
+
+private:
+    void stepOnce();
+    void refreshShapes();
+    void fitCamera();
+    void drawPanel();
+    void interactiveLoop(int frameLimit, bool vsync);
+    void simulationLoop();
+    void buildPanel();
+    void headlessLoop();
+    static void onMouseButton(GLFWwindow* window, int button, int action, int mods);
+    static void onCursor(GLFWwindow* window, double x, double y);
+    static void onScroll(GLFWwindow* window, double dx, double dy);
+    static void onKey(GLFWwindow* window, int key, int scancode, int action, int mods);
+
+    ViewerOptions options_;
+    GLFWwindow* window_ = nullptr;
+    bool imguiReady_ = false;
+    std::unique_ptr<scenes::Scene> scene_;
+    SceneShapes shapes_;
+    OrbitCamera camera_;
+    SpringDrag drag_;
+    Renderer renderer_;
+    double groundTile_ = 0.5;
+
+    // Interactive mode: the simulation thread and the lock that guards the scene against it.
+    std::mutex sceneMutex_;
+    std::atomic<bool> stopSimulation_{false};
+
+    // run state
+    bool paused_ = false;
+    bool stepRequested_ = false;
+    double speed_ = 1.0;
+    double accumulator_ = 0.0;
+    double pushRemaining_ = 0.0;
+    bool showContacts_ = true;
+    bool showPanel_ = true;
+    double normalLength_ = 0.1;
+    double depthExaggeration_ = 10.0;
+    int method_ = 0;
+    FrameTimes times_;
+
+    // mouse state for camera gestures
+    enum class Gesture { None, Orbit, Pan, Drag } gesture_ = Gesture::None;
+    double lastX_ = 0.0, lastY_ = 0.0;
+
+    // live plots (last few seconds of each measure)
+    struct Series {
+        std::deque<float> values;
+        void push(double v);
+    };
+    Series penetration_, alignment_, drift_, collisionMs_, solverMs_, contactCount_;
+};
+
+}  // namespace gdc::viewer
