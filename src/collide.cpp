@@ -37,32 +37,129 @@ Vec3 minimumOverlapFaceNormal(const MinkowskiDifference& pair) {
     return best;
 }
 
-FeatureGeometry featureGeometry(const Polytope& polytope, const Feature& feature, const Pose& toCommon) {
+// How much smaller a neighbouring face's overlap must be than the growth-distance normal's before
+// it replaces that normal: "clearly" smaller, so that the paper's normal is kept wherever the two
+// roughly agree and the choice cannot flicker between near-equal candidates.
+constexpr double kClearlySmallerOverlap = 0.5;
+
+// Stage 1, second half: the growth-distance normal checked against the face normals around it.
+// The growth distance scales both bodies about their contraction points, so for an offset,
+// elongated pair — a cube hanging mostly off a plank's edge — the ray through the contraction
+// points leaves A − B through a side facet, and its normal is far from the direction in which the
+// bodies actually rest on each other (the minimum-translation direction). The faces incident to
+// the two selected features bound the Gauss-map regions the normal landed in, so they are the
+// nearby directions in which a face rests on the other body; if one of them needs clearly less
+// translation to separate the pair, it is the contact normal. Otherwise the paper's normal stays.
+// Candidates within rounding of the same overlap go to the one closest to the growth-distance
+// normal, so collide(A, B) and collide(B, A) choose alike. Returns true when `normal` changed.
+bool preferNearbyFaceNormal(const MinkowskiDifference& pair, const Feature& featureA, const Feature& featureB,
+                            double tolerance, Vec3& normal) {
+    const double current = pair.overlapAlong(normal);
+    if (!(current > tolerance)) return false;  // touching or apart along n: n already separates them
+    const double limit = kClearlySmallerOverlap * current;
+    bool found = false;
+    double bestOverlap = INFINITY, bestCos = -2;
+    Vec3 best = normal;
+    SmallVector<int, 32> seen;  // face indices already tried (A's as i, B's as −1 − i)
+    auto consider = [&](int key, const Vec3& candidate) {
+        for (int k : seen)
+            if (k == key) return;
+        seen.push_back(key);
+        const double overlap = pair.overlapAlong(candidate);
+        if (!(overlap < limit)) return;
+        const double cosine = candidate.dot(normal);
+        if (!found || overlap < bestOverlap - tolerance || (overlap <= bestOverlap + tolerance && cosine > bestCos))
+            found = true, bestOverlap = overlap, bestCos = cosine, best = candidate;
+    };
+    auto facesAround = [&](const Polytope& polytope, const Feature& feature, auto&& visit) {
+        int storage[2];
+        const int* indices = nullptr;
+        const int count = featureVertices(polytope, feature, &indices, storage);
+        for (int i = 0; i < count; ++i)
+            for (int k = polytope.vertexFaceOffsets()[indices[i]]; k < polytope.vertexFaceOffsets()[indices[i] + 1]; ++k)
+                visit(polytope.vertexFaces()[k]);
+    };
+    facesAround(pair.a, featureA, [&](int face) { consider(face, pair.a.faces()[face].normal); });
+    facesAround(pair.b, featureB,
+                [&](int face) { consider(-1 - face, -(pair.bInA.rotation * pair.b.faces()[face].normal)); });
+    if (!found) return false;
+    normal = best;
+    return true;
+}
+
+// The vertices of a face's cap (gauss_map.hpp), each once, in the polytope's frame.
+void capVertices(const Polytope& polytope, const SmallVector<int, 8>& cap, SmallVector<int, 32>& vertices) {
+    for (int f : cap) {
+        const Polytope::Face& face = polytope.faces()[f];
+        for (int i = 0; i < face.count; ++i) {
+            const int vertex = polytope.faceVertices()[face.first + i];
+            bool seen = false;
+            for (int v : vertices) seen |= v == vertex;
+            if (!seen) vertices.push_back(vertex);
+        }
+    }
+}
+
+FeatureGeometry faceGeometry(const Polytope& polytope, int index, const Pose& toCommon) {
+    FeatureGeometry geometry;
+    geometry.type = FeatureType::Face;
+    const Polytope::Face& face = polytope.faces()[index];
+    for (int i = 0; i < face.count; ++i)
+        geometry.points.push_back(toCommon.apply(polytope.vertices()[polytope.faceVertices()[face.first + i]]));
+    geometry.planeNormal = toCommon.rotation * face.normal;
+    geometry.planeOffset = face.offset + geometry.planeNormal.dot(toCommon.position);
+    return geometry;
+}
+
+// `direction` is the contact normal in the polytope's own frame, pointing away from the body
+// (n for A, −n for B): the cap of a face feature is taken around it.
+FeatureGeometry featureGeometry(const Polytope& polytope, const Feature& feature, const Pose& toCommon,
+                                const Vec3& direction, const AngularTolerance& angularTolerance) {
+    if (feature.type == FeatureType::Face) {
+        FeatureGeometry geometry = faceGeometry(polytope, feature.index, toCommon);
+        SmallVector<int, 8> cap;
+        faceCap(polytope, feature.index, direction, angularTolerance, cap);
+        if (cap.size() > 1)
+            for (int face : cap) geometry.capFaces.push_back(faceGeometry(polytope, face, toCommon));
+        return geometry;
+    }
     FeatureGeometry geometry;
     geometry.type = feature.type;
     int storage[2];
     const int* indices = nullptr;
     int count = featureVertices(polytope, feature, &indices, storage);
     for (int i = 0; i < count; ++i) geometry.points.push_back(toCommon.apply(polytope.vertices()[indices[i]]));
-    if (feature.type == FeatureType::Face) {
-        const Polytope::Face& face = polytope.faces()[feature.index];
-        geometry.planeNormal = toCommon.rotation * face.normal;
-        geometry.planeOffset = face.offset + geometry.planeNormal.dot(toCommon.position);
-    }
     return geometry;
 }
 
 // The Gauss-map features widen the normal into a region; where a face was picked the exact
-// contact normal is that face's normal (vertex–face, edge–face, face–face all rest on a face),
-// and for edge–edge it is the edges' common perpendicular. Of two faces, the one closer to the
-// growth-distance normal is the face the cast actually hit.
-Vec3 refineNormal(const Vec3& normal, const FeatureGeometry& a, const FeatureGeometry& b) {
+// contact normal is a face normal (vertex–face, edge–face, face–face all rest on a face), and for
+// edge–edge it is the edges' common perpendicular. The candidates are the picked faces and the
+// other faces of their caps (all within the angular tolerance); the contact normal is the one
+// along which the pair overlaps least — the separating-axis choice, as ODE's dBoxBox makes it.
+// It depends on the geometry only: at tiny tilts the growth-distance normal lies between two
+// near-parallel faces within rounding, and choosing the face closer to it let the normal flip
+// between them from one tilt to the next (and between collide(A, B) and collide(B, A)). The
+// comparison is exact: two overlaps cross only where their faces are parallel, so a choice made
+// by rounding there picks between normals that agree to rounding. Equal overlaps fall back to the
+// face closer to the growth-distance normal (the face the cast hit).
+Vec3 refineNormal(const Vec3& normal, const FeatureGeometry& a, const FeatureGeometry& b,
+                  const MinkowskiDifference& pair) {
     Vec3 best = normal;
-    double bestCos = -2;
-    if (a.type == FeatureType::Face && a.planeNormal.dot(normal) > bestCos)
-        bestCos = a.planeNormal.dot(normal), best = a.planeNormal;
-    if (b.type == FeatureType::Face && -b.planeNormal.dot(normal) > bestCos)
-        bestCos = -b.planeNormal.dot(normal), best = -b.planeNormal;
+    double bestOverlap = INFINITY, bestCos = -2;
+    auto consider = [&](const Vec3& candidate) {
+        const double overlap = pair.overlapAlong(candidate), cosine = candidate.dot(normal);
+        if (overlap < bestOverlap || (overlap == bestOverlap && cosine > bestCos))
+            bestOverlap = overlap, bestCos = cosine, best = candidate;
+    };
+    if (a.type == FeatureType::Face) {
+        consider(a.planeNormal);
+        for (const FeatureGeometry& face : a.capFaces) consider(face.planeNormal);
+    }
+    if (b.type == FeatureType::Face) {
+        consider(-b.planeNormal);
+        for (const FeatureGeometry& face : b.capFaces) consider(-face.planeNormal);
+    }
     if (bestCos > -2) return best;
     if (a.type == FeatureType::Edge && b.type == FeatureType::Edge) {
         Vec3 perpendicular = (a.points[1] - a.points[0]).cross(b.points[1] - b.points[0]);
@@ -83,8 +180,13 @@ void emit(const LiftedPoints& points, const Vec3& normal, const Pose& commonToWo
     int count = reduceContacts(points, maxCount, chosen);
     manifold.normal = commonToWorld.rotation * normal;
     manifold.pointCount = count;
-    for (int i = 0; i < count; ++i)
+    for (int i = 0; i < count; ++i) {
         manifold.points[i] = {commonToWorld.apply(points[chosen[i]].position), points[chosen[i]].depth};
+        // Finite input can still overflow (a plane offset of 1e308, found by the fuzzer): refuse it
+        // rather than hand out an infinite or NaN contact.
+        if (!manifold.points[i].position.allFinite() || !std::isfinite(manifold.points[i].depth))
+            throw InvalidInput("the contact overflows double precision (coordinates or offsets near 1e308)");
+    }
 }
 
 }  // namespace
@@ -102,31 +204,66 @@ Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const 
     if ((pair.centreB - pair.centreA).norm() > size + settings.margin) return manifold;
 
     // Stage 1: contact normal from the growth distance.
-    GrowthDistance growth = growthDistance(a, b, bInA, settings, /*needWitnesses=*/false);
+    const GrowthDistance growth = growthDistance(a, b, bInA, settings, /*needWitnesses=*/false);
     Vec3 normal = growth.valid ? growth.normal : minimumOverlapFaceNormal(pair);
     if (pair.overlapAlong(normal) < -settings.margin - tolerance) return manifold;  // separated along n
 
     // Stage 2: one Gauss-map feature per body (B's searched in its own frame with −n).
     const AngularTolerance angularTolerance(settings.angularTolerance);
-    manifold.featureA = selectFeature(a, normal, angularTolerance, settings.bruteForceSupportLimit);
-    manifold.featureB = selectFeature(b, bInA.rotation.transpose() * -normal, angularTolerance,
-                                      settings.bruteForceSupportLimit);
-    const FeatureGeometry featureA = featureGeometry(a, manifold.featureA, Pose{});
-    const FeatureGeometry featureB = featureGeometry(b, manifold.featureB, bInA);
-    normal = refineNormal(normal, featureA, featureB);
+    auto selectFeatures = [&](const Vec3& n) {
+        manifold.featureA = selectFeature(a, n, angularTolerance, settings.bruteForceSupportLimit);
+        manifold.featureB = selectFeature(b, bInA.rotation.transpose() * -n, angularTolerance,
+                                          settings.bruteForceSupportLimit);
+    };
+    selectFeatures(normal);
+    // Stage 1's check of the growth-distance normal against the faces around the two features
+    // (the overhang fix); the features are then those of the corrected normal.
+    if (growth.valid && preferNearbyFaceNormal(pair, manifold.featureA, manifold.featureB, tolerance, normal)) {
+        if (pair.overlapAlong(normal) < -settings.margin - tolerance) return Manifold{};  // a separating face
+        selectFeatures(normal);
+    }
+    const FeatureGeometry featureA = featureGeometry(a, manifold.featureA, Pose{}, normal, angularTolerance);
+    const FeatureGeometry featureB = featureGeometry(b, manifold.featureB, bInA, bInA.rotation.transpose() * -normal,
+                                                     angularTolerance);
+    normal = refineNormal(normal, featureA, featureB, pair);
 
     // Stage 3: intersection in the contact plane, each point with its own depth.
     LiftedPoints kept = intersectFeatures(featureA, featureB, normal, tolerance, -settings.margin - tolerance);
+    // The deepest contact must carry the whole penetration along n — the distance B must move
+    // along n to clear A, the exit of the ray along n through A − B (ODE's contract: moving by
+    // 0.96·depth still touches, 1.04·depth separates). The intersection misses it when the
+    // projections do not meet (a vertex–vertex touch, or deep overlap, where the features that
+    // touch when the bodies are shrunk to the growth distance drift apart at full size), or when
+    // the deepest overlap lies beyond the selected features (a face–edge pair whose edge dips
+    // below a neighbouring face). The supports' overlap along n bounds that distance from above, so
+    // the ray cast runs only when the lifted points fall short of it, and its point is added only
+    // when it is deeper by more than 1 % (ODE's contract allows 4 %; the slack absorbs the ray
+    // cast's accuracy on the nearly coplanar facets of A − B that near-parallel faces make, where
+    // it is a few times the tilt times the size rather than the cast's tolerance). The added
+    // point lies midway between the two touching witnesses, so its points on A and B are
+    // position ± depth/2·n like every contact; it is never a silently missing contact.
+    constexpr double kDepthSlack = 0.01;
+    double deepest = -INFINITY;
+    for (const LiftedPoint& point : kept) deepest = std::max(deepest, point.depth);
+    if (deepest < pair.overlapAlong(normal) - tolerance) {
+        const SeparationAlong separation = separationAlong(a, b, bInA, normal, settings);
+        const double slack = (std::isfinite(deepest) ? kDepthSlack * std::abs(deepest) : 0.0) + tolerance;
+        if (kept.empty() && separation.valid && separation.distance < -settings.margin - tolerance)
+            return Manifold{};  // apart along n by more than the margin
+        if (separation.valid && separation.distance > deepest + slack) {
+            const Vec3 middle = 0.5 * (separation.witnessA + separation.witnessB);
+            Vec3 u, v;
+            planeBasis(normal, u, v);
+            kept.push_back({middle, separation.distance, Vec2(middle.dot(u), middle.dot(v))});
+        }
+    }
     if (kept.empty()) {
-        // The projections do not meet: at a vertex–vertex touch (rounding), or in deep overlap,
-        // where the features that touch when the bodies are shrunk to the growth distance drift
-        // apart once they are full size. Never a missing contact: one point in the overlap, midway
-        // between the growth-distance witnesses (both lie on the line through the contraction
-        // points, inside A ∩ B), with the overlap along n as depth — the translation that separates.
-        if (growth.valid && !growth.hasWitnesses) growth = growthDistance(a, b, bInA, settings);
-        Vec3 middle = growth.hasWitnesses ? 0.5 * (growth.witnessA + growth.witnessB)
-                                   : 0.5 * (a.vertices()[pair.supportA(normal)] + pair.vertexB(pair.supportB(-normal)));
-        kept.push_back({middle, pair.overlapAlong(normal), Vec2::Zero()});
+        // The line along n misses A − B: the pair is apart, by at most the margin (the supports'
+        // overlap along n passed the check above) — a speculative contact at the supports' gap.
+        const Vec3 middle = 0.5 * (a.vertices()[pair.supportA(normal)] + pair.vertexB(pair.supportB(-normal)));
+        const double gap = pair.overlapAlong(normal);
+        if (gap < -settings.margin - tolerance) return Manifold{};
+        kept.push_back({middle, gap, Vec2::Zero()});
     }
     emit(kept, normal, poseA, settings, manifold);
     return manifold;
@@ -134,13 +271,19 @@ Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const 
 
 Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings) {
     requireFinite(poseA, "A");
-    const double normalLength = b.normal.norm();
-    if (!b.normal.allFinite() || !std::isfinite(b.offset) || !(normalLength > 0))
+    // Normalised through its largest component first: a finite normal of huge (or tiny)
+    // components would overflow (underflow) the plain norm and become a zero (or NaN) direction.
+    const double largest = b.normal.allFinite() ? b.normal.cwiseAbs().maxCoeff() : NAN;
+    if (!std::isfinite(b.offset) || !(largest > 0) || !std::isfinite(largest))
         throw InvalidInput("the half-space normal must be finite and non-zero");
+    const double normalLength = (b.normal / largest).norm();
+    const Vec3 unitNormal = b.normal / largest / normalLength;
+    if (!std::isfinite(b.offset / largest / normalLength))
+        throw InvalidInput("the half-space offset overflows double precision once its normal is normalised");
     Manifold manifold;
     // In A's frame: the solid is {x : m·x ≤ offset}; the normal from A into the solid is −m.
-    const Vec3 m = poseA.rotation.transpose() * (b.normal / normalLength);
-    const double offset = b.offset / normalLength - (b.normal / normalLength).dot(poseA.position);
+    const Vec3 m = poseA.rotation.transpose() * unitNormal;
+    const double offset = b.offset / largest / normalLength - unitNormal.dot(poseA.position);
     const Vec3 normal = -m;
     const double size = a.radius();
     const double tolerance = 1e-9 * size;
@@ -149,12 +292,22 @@ Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b, const
 
     // The half-space's Gauss map is the single point −n, so its feature is its plane; A's
     // feature comes from its Gauss map as usual, and each of its vertices is lifted onto the plane.
-    manifold.featureA = selectFeature(a, normal, AngularTolerance(settings.angularTolerance),
-                                      settings.bruteForceSupportLimit);
+    const AngularTolerance angularTolerance(settings.angularTolerance);
+    manifold.featureA = selectFeature(a, normal, angularTolerance, settings.bruteForceSupportLimit);
     manifold.featureB = {FeatureType::Face, 0};
     int storage[2];
     const int* indices = nullptr;
     int count = featureVertices(a, manifold.featureA, &indices, storage);
+    SmallVector<int, 32> vertices;  // a face's whole cap of near-coplanar faces rests on the plane
+    if (manifold.featureA.type == FeatureType::Face) {
+        SmallVector<int, 8> cap;
+        faceCap(a, manifold.featureA.index, normal, angularTolerance, cap);
+        if (cap.size() > 1) {
+            capVertices(a, cap, vertices);
+            indices = vertices.data();
+            count = static_cast<int>(vertices.size());
+        }
+    }
     Vec3 u, v;
     planeBasis(normal, u, v);
     LiftedPoints kept;

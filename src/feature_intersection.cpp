@@ -119,8 +119,10 @@ void planeBasis(const Vec3& n, Vec3& u, Vec3& v) {
     v = n.cross(u);
 }
 
-LiftedPoints intersectFeatures(const FeatureGeometry& a, const FeatureGeometry& b, const Vec3& normal,
-                               double tolerance, double minimumDepth) {
+namespace {
+
+LiftedPoints intersectSingle(const FeatureGeometry& a, const FeatureGeometry& b, const Vec3& normal,
+                             double tolerance, double minimumDepth) {
     Vec3 u, v;
     planeBasis(normal, u, v);
     Polygon2 region = intersect2d(project(a, u, v), project(b, u, v), tolerance);
@@ -137,6 +139,33 @@ LiftedPoints intersectFeatures(const FeatureGeometry& a, const FeatureGeometry& 
         lifted.push_back({q.x() * u + q.y() * v + 0.5 * (heightA + heightB) * normal, heightA - heightB, q});
     }
     return lifted;
+}
+
+}  // namespace
+
+LiftedPoints intersectFeatures(const FeatureGeometry& a, const FeatureGeometry& b, const Vec3& normal,
+                               double tolerance, double minimumDepth) {
+    if (a.capFaces.empty() && b.capFaces.empty()) return intersectSingle(a, b, normal, tolerance, minimumDepth);
+    // A cap bends at its inner edges, so its outline alone would miss the deepest point (an inner
+    // vertex of a tessellated sphere) and lift points onto the wrong face where the cap's
+    // projection is not convex. Face by face, every vertex of the arrangement is found — outline
+    // corners, inner vertices, crossings of inner edges — and lifted onto the faces it lies on.
+    // Points shared by neighbouring faces are kept once.
+    LiftedPoints all;
+    auto pieces = [](const FeatureGeometry& feature) {
+        return feature.capFaces.empty() ? std::make_pair(&feature, std::size_t{1})
+                                        : std::make_pair(feature.capFaces.data(), feature.capFaces.size());
+    };
+    const auto [piecesA, countA] = pieces(a);
+    const auto [piecesB, countB] = pieces(b);
+    for (std::size_t i = 0; i < countA; ++i)
+        for (std::size_t j = 0; j < countB; ++j)
+            for (const LiftedPoint& point : intersectSingle(piecesA[i], piecesB[j], normal, tolerance, minimumDepth)) {
+                bool known = false;
+                for (const LiftedPoint& other : all) known = known || (other.planar - point.planar).norm() <= tolerance;
+                if (!known) all.push_back(point);
+            }
+    return all;
 }
 
 }  // namespace gdc::detail

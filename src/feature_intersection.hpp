@@ -11,6 +11,7 @@
 #include <gdcontact/manifold.hpp>
 
 #include <cmath>
+#include <vector>
 
 namespace gdc::detail {
 
@@ -20,6 +21,12 @@ struct FeatureGeometry {
     SmallVector<Vec3, 16> points;  // 1 for a vertex, 2 for an edge, the loop of a face
     Vec3 planeNormal = Vec3::Zero();  // faces only
     double planeOffset = 0;
+    // A face may come with its cap: the near-coplanar neighbours within the angular tolerance
+    // (gauss_map.hpp). Then `capFaces` holds every face of the cap as a face feature of its own
+    // (the selected one first); the intersection is the union of the pairwise intersections of
+    // the two features' faces, each point lifted onto its own two faces, so every contact lies on
+    // both surfaces exactly however the cap bends.
+    std::vector<FeatureGeometry> capFaces;
 };
 
 struct LiftedPoint {

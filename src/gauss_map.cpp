@@ -6,38 +6,76 @@ namespace gdc::detail {
 
 Feature selectFeature(const Polytope& polytope, const Vec3& direction, const AngularTolerance& tolerance,
                       int bruteForceLimit) {
-    // The region containing `direction` belongs to the support vertex, so every candidate face
-    // and edge within the tolerance is incident to it (for tolerances below the polytope's
-    // smallest dihedral turn, which is what the tolerance is for).
+    // The region containing `direction` belongs to the support vertex, so the candidate faces and
+    // edges are those around it (for tolerances below the polytope's smallest dihedral turn, which
+    // is what the tolerance is for). When `direction` lies on (or within the tolerance of) an
+    // arc — an edge nearly perpendicular to it, as every edge–edge normal is — the edge's other
+    // end supports as well and rounding decides which one supportVertex() returns; its faces and
+    // edges are candidates too, so that the choice does not depend on that rounding (it made
+    // collide(A, B) and collide(B, A) pick a face in one and an edge in the other).
     const int vertex = polytope.supportVertex(direction, bruteForceLimit);
-    const int begin = polytope.vertexFaceOffsets()[vertex], end = polytope.vertexFaceOffsets()[vertex + 1];
+    SmallVector<int, 8> around;
+    around.push_back(vertex);
+    const Vec3& apex = polytope.vertices()[vertex];
+    for (int k = polytope.neighborOffsets()[vertex]; k < polytope.neighborOffsets()[vertex + 1]; ++k) {
+        const int neighbour = polytope.neighbors()[k];
+        const Vec3 edge = apex - polytope.vertices()[neighbour];
+        if (direction.dot(edge) <= tolerance.sine * edge.norm()) around.push_back(neighbour);
+    }
 
     Feature best{FeatureType::Vertex, vertex};
     double bestCos = tolerance.cosine;
-    for (int i = begin; i < end; ++i) {
-        int face = polytope.vertexFaces()[i];
-        double c = polytope.faces()[face].normal.dot(direction);
-        if (c >= bestCos) bestCos = c, best = {FeatureType::Face, face};
-    }
+    for (int v : around)
+        for (int i = polytope.vertexFaceOffsets()[v]; i < polytope.vertexFaceOffsets()[v + 1]; ++i) {
+            int face = polytope.vertexFaces()[i];
+            double c = polytope.faces()[face].normal.dot(direction);
+            if (c > bestCos || (c == bestCos && (best.type != FeatureType::Face || face < best.index)))
+                bestCos = c, best = {FeatureType::Face, face};  // ties: the lowest index, in any visiting order
+        }
     if (best.type == FeatureType::Face) return best;
 
     // An edge qualifies when `direction` is within the tolerance of its arc: nearly perpendicular
     // to the edge, and between the two face normals once projected onto the arc's great circle.
     double bestSin = tolerance.sine;
-    for (int i = begin; i < end; ++i) {
-        int edgeIndex = polytope.vertexEdges()[i];
-        const Polytope::Edge& edge = polytope.edges()[edgeIndex];
-        Vec3 along = (polytope.vertices()[edge.head] - polytope.vertices()[edge.tail]).normalized();
-        double s = std::abs(along.dot(direction));
-        if (s > bestSin) continue;
-        Vec3 projected = direction - along.dot(direction) * along;
-        const Vec3& left = polytope.faces()[edge.leftFace].normal;
-        const Vec3& right = polytope.faces()[edge.rightFace].normal;
-        Vec3 arcAxis = left.cross(right);
-        bool betweenNormals = left.cross(projected).dot(arcAxis) >= 0 && projected.cross(right).dot(arcAxis) >= 0;
-        if (betweenNormals) bestSin = s, best = {FeatureType::Edge, edgeIndex};
-    }
+    for (int v : around)
+        for (int i = polytope.vertexFaceOffsets()[v]; i < polytope.vertexFaceOffsets()[v + 1]; ++i) {
+            int edgeIndex = polytope.vertexEdges()[i];
+            const Polytope::Edge& edge = polytope.edges()[edgeIndex];
+            Vec3 along = (polytope.vertices()[edge.head] - polytope.vertices()[edge.tail]).normalized();
+            double s = std::abs(along.dot(direction));
+            if (s > bestSin || (s == bestSin && best.type == FeatureType::Edge && edgeIndex > best.index)) continue;
+            Vec3 projected = direction - along.dot(direction) * along;
+            const Vec3& left = polytope.faces()[edge.leftFace].normal;
+            const Vec3& right = polytope.faces()[edge.rightFace].normal;
+            Vec3 arcAxis = left.cross(right);
+            bool betweenNormals = left.cross(projected).dot(arcAxis) >= 0 && projected.cross(right).dot(arcAxis) >= 0;
+            if (betweenNormals) bestSin = s, best = {FeatureType::Edge, edgeIndex};
+        }
     return best;
+}
+
+void faceCap(const Polytope& polytope, int face, const Vec3& direction, const AngularTolerance& tolerance,
+             SmallVector<int, 8>& faces) {
+    faces.clear();
+    faces.push_back(face);
+    auto contains = [&](int f) {
+        for (int g : faces)
+            if (g == f) return true;
+        return false;
+    };
+    // Breadth first over faces sharing a vertex; a box's neighbours fail the test at once.
+    for (std::size_t next = 0; next < faces.size(); ++next) {
+        const Polytope::Face& current = polytope.faces()[faces[next]];
+        for (int i = 0; i < current.count; ++i) {
+            const int vertex = polytope.faceVertices()[current.first + i];
+            for (int k = polytope.vertexFaceOffsets()[vertex]; k < polytope.vertexFaceOffsets()[vertex + 1]; ++k) {
+                const int candidate = polytope.vertexFaces()[k];
+                if (polytope.faces()[candidate].normal.dot(direction) < tolerance.cosine || contains(candidate)) continue;
+                if (static_cast<int>(faces.size()) >= kMaxCapFaces) return;
+                faces.push_back(candidate);
+            }
+        }
+    }
 }
 
 int featureVertices(const Polytope& polytope, const Feature& feature, const int** indices, int* storage) {

@@ -10,6 +10,8 @@
 #include <gdcontact/manifold.hpp>
 #include <gdcontact/polytope.hpp>
 
+#include "small_vector.hpp"
+
 #include <cmath>
 
 namespace gdc::detail {
@@ -25,6 +27,16 @@ struct AngularTolerance {
 /// within the angular tolerance for faces and edges.
 Feature selectFeature(const Polytope& polytope, const Vec3& direction, const AngularTolerance& tolerance,
                       int bruteForceLimit);
+
+/// Most faces one cap may hold (bounds the time a very finely tessellated flat region costs).
+constexpr int kMaxCapFaces = 64;
+
+/// The cap of a selected face: that face and every face reachable from it through shared vertices
+/// whose normal is also within the angular tolerance of `direction` — the near-coplanar faces
+/// (a hull of noisy points, a finely tessellated flat side) that together make up the flat region
+/// the body rests on. Writes face indices, the selected face first; at most kMaxCapFaces.
+void faceCap(const Polytope& polytope, int face, const Vec3& direction, const AngularTolerance& tolerance,
+             SmallVector<int, 8>& faces);
 
 /// The feature's vertices in order (1 for a vertex, 2 for an edge, the CCW loop of a face).
 int featureVertices(const Polytope& polytope, const Feature& feature, const int** indices, int* storage);

@@ -178,4 +178,29 @@ GrowthDistance growthDistance(const Polytope& a, const Polytope& b, const Pose& 
     return result;
 }
 
+SeparationAlong separationAlong(const Polytope& a, const Polytope& b, const Pose& bInA, const Vec3& normal,
+                                const Settings& settings) {
+    // A − B contains the origin when the pair overlaps; B moved by t·normal still overlaps A while
+    // t·normal ∈ A − B, so the separating translation is where that ray leaves A − B. Cast back
+    // from beyond A − B's support plane (as for the growth distance), so the cast starts outside.
+    SeparationAlong result;
+    const MinkowskiDifference difference(a, b, bInA, settings.bruteForceSupportLimit);
+    auto support = [&](const Vec3& direction) {
+        const int ia = difference.supportA(direction), ib = difference.supportB(-direction);
+        return SupportPoint{a.vertices()[ia] - difference.vertexB(ib), ia, ib};
+    };
+    const double size = a.radius() + b.radius();
+    const double start = normal.dot(support(normal).point) + 0.5 * size;
+    RayCastResult cast = gjkRayCast(support, start * normal, -normal, settings.rayCastTolerance * size,
+                                    settings.maxRayCastIterations);
+    if (!cast.hit || cast.simplexCount == 0) return result;
+    result.valid = true;
+    result.distance = start - cast.lambda;
+    for (int i = 0; i < cast.simplexCount; ++i) {
+        result.witnessA += cast.weights[i] * a.vertices()[cast.simplex[i].vertexA];
+        result.witnessB += cast.weights[i] * difference.vertexB(cast.simplex[i].vertexB);
+    }
+    return result;
+}
+
 }  // namespace gdc::detail

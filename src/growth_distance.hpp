@@ -123,4 +123,16 @@ struct GrowthDistance {
 GrowthDistance growthDistance(const Polytope& a, const Polytope& b, const Pose& bInA, const Settings& settings,
                               bool needWitnesses = true);
 
+/// How far B must move along the unit `normal` (A's frame, from A towards B) to stop overlapping
+/// A: the exit distance t of the ray from the origin along `normal` through A − B, with points of
+/// A and B (A's frame) whose difference is t·normal — the touching pair at that translation.
+struct SeparationAlong {
+    bool valid = false;  // false when the line along `normal` misses A − B (the pair is separated)
+    double distance = 0;
+    Vec3 witnessA = Vec3::Zero();
+    Vec3 witnessB = Vec3::Zero();
+};
+SeparationAlong separationAlong(const Polytope& a, const Polytope& b, const Pose& bInA, const Vec3& normal,
+                                const Settings& settings);
+
 }  // namespace gdc::detail

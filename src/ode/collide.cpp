@@ -208,6 +208,8 @@ int collide(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip,
     // ODE is C: no exception may cross back into it.
     try {
         return collideChecked(o1, o2, flags, contact, skip, settings);
+    } catch (const InvalidInput& error) {  // its message already starts with "gdcontact: "
+        dMessage(d_ERR_UNKNOWN, "%s (pair skipped)", error.what());
     } catch (const std::exception& error) {
         dMessage(d_ERR_UNKNOWN, "gdcontact: %s (pair skipped)", error.what());
     } catch (...) {

@@ -19,6 +19,16 @@
 using namespace gdc;
 using namespace gdc::ode::test;
 
+
+// AddressSanitizer (gcc defines __SANITIZE_ADDRESS__, clang answers __has_feature).
+#if defined(__SANITIZE_ADDRESS__)
+#define GDCONTACT_TEST_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define GDCONTACT_TEST_UNDER_ASAN 1
+#endif
+#endif
+
 namespace {
 
 // ODE's demo cube in dCreateConvex's layout (half size 0.25), counter-clockwise from outside.
@@ -164,7 +174,12 @@ TEST_CASE("a geom at the address of a destroyed createConvex geom does not inher
         CHECK(gdc::ode::polytopeOf(plain) == nullptr);
         dGeomDestroy(plain);
     }
+#if defined(GDCONTACT_TEST_UNDER_ASAN)
+    // ASan's quarantine never hands a freed address straight back: nothing to prove here.
+    if (!reused) WARN("address reuse not observed (AddressSanitizer quarantine)");
+#else
     CHECK(reused);  // otherwise the test proved nothing
+#endif
 }
 
 namespace {
