@@ -37,6 +37,14 @@ Vec3 minimumOverlapFaceNormal(const MinkowskiDifference& pair) {
     return best;
 }
 
+// The pair's overlap along `direction`, reusing `normalOverlap` (the overlap along `normal`, which
+// the caller already has) when the direction is the normal itself: the face the normal came from
+// is usually among the candidates of each later step. overlapAlong is a deterministic function of
+// the direction's value, so the reused number is the one it would compute.
+double overlapAlong(const MinkowskiDifference& pair, const Vec3& direction, const Vec3& normal, double normalOverlap) {
+    return direction == normal ? normalOverlap : pair.overlapAlong(direction);
+}
+
 // How much smaller a neighbouring face's overlap must be than the growth-distance normal's before
 // it replaces that normal: "clearly" smaller, so that the paper's normal is kept wherever the two
 // roughly agree and the choice cannot flicker between near-equal candidates.
@@ -52,20 +60,22 @@ constexpr double kClearlySmallerOverlap = 0.5;
 // translation to separate the pair, it is the contact normal. Otherwise the paper's normal stays.
 // Candidates within rounding of the same overlap go to the one closest to the growth-distance
 // normal, so collide(A, B) and collide(B, A) choose alike. Returns true when `normal` changed.
+// `normalOverlap` is the pair's overlap along `normal`; both are updated together.
 bool preferNearbyFaceNormal(const MinkowskiDifference& pair, const Feature& featureA, const Feature& featureB,
-                            double tolerance, Vec3& normal) {
-    const double current = pair.overlapAlong(normal);
+                            double tolerance, Vec3& normal, double& normalOverlap) {
+    const double current = normalOverlap;
     if (!(current > tolerance)) return false;  // touching or apart along n: n already separates them
     const double limit = kClearlySmallerOverlap * current;
     bool found = false;
     double bestOverlap = INFINITY, bestCos = -2;
     Vec3 best = normal;
-    SmallVector<int, 32> seen;  // face indices already tried (A's as i, B's as −1 − i)
-    auto consider = [&](int key, const Vec3& candidate) {
+    // Face indices already tried, per body: a face touches several of the feature's vertices.
+    SmallVector<int, 32> seenA, seenB;
+    auto consider = [&](SmallVector<int, 32>& seen, int face, const Vec3& candidate) {
         for (int k : seen)
-            if (k == key) return;
-        seen.push_back(key);
-        const double overlap = pair.overlapAlong(candidate);
+            if (k == face) return;
+        seen.push_back(face);
+        const double overlap = overlapAlong(pair, candidate, normal, current);
         if (!(overlap < limit)) return;
         const double cosine = candidate.dot(normal);
         if (!found || overlap < bestOverlap - tolerance || (overlap <= bestOverlap + tolerance && cosine > bestCos))
@@ -75,15 +85,17 @@ bool preferNearbyFaceNormal(const MinkowskiDifference& pair, const Feature& feat
         int storage[2];
         const int* indices = nullptr;
         const int count = featureVertices(polytope, feature, &indices, storage);
+        const int* offsets = polytope.vertexFaceOffsets().data();
+        const int* faces = polytope.vertexFaces().data();
         for (int i = 0; i < count; ++i)
-            for (int k = polytope.vertexFaceOffsets()[indices[i]]; k < polytope.vertexFaceOffsets()[indices[i] + 1]; ++k)
-                visit(polytope.vertexFaces()[k]);
+            for (int k = offsets[indices[i]], end = offsets[indices[i] + 1]; k < end; ++k) visit(faces[k]);
     };
-    facesAround(pair.a, featureA, [&](int face) { consider(face, pair.a.faces()[face].normal); });
+    facesAround(pair.a, featureA, [&](int face) { consider(seenA, face, pair.a.faces()[face].normal); });
     facesAround(pair.b, featureB,
-                [&](int face) { consider(-1 - face, -(pair.bInA.rotation * pair.b.faces()[face].normal)); });
+                [&](int face) { consider(seenB, face, -(pair.bInA.rotation * pair.b.faces()[face].normal)); });
     if (!found) return false;
     normal = best;
+    normalOverlap = bestOverlap;
     return true;
 }
 
@@ -143,12 +155,13 @@ FeatureGeometry featureGeometry(const Polytope& polytope, const Feature& feature
 // comparison is exact: two overlaps cross only where their faces are parallel, so a choice made
 // by rounding there picks between normals that agree to rounding. Equal overlaps fall back to the
 // face closer to the growth-distance normal (the face the cast hit).
-Vec3 refineNormal(const Vec3& normal, const FeatureGeometry& a, const FeatureGeometry& b,
+// `normalOverlap` is the pair's overlap along `normal`; both are updated together.
+void refineNormal(Vec3& normal, double& normalOverlap, const FeatureGeometry& a, const FeatureGeometry& b,
                   const MinkowskiDifference& pair) {
     Vec3 best = normal;
     double bestOverlap = INFINITY, bestCos = -2;
     auto consider = [&](const Vec3& candidate) {
-        const double overlap = pair.overlapAlong(candidate), cosine = candidate.dot(normal);
+        const double overlap = overlapAlong(pair, candidate, normal, normalOverlap), cosine = candidate.dot(normal);
         if (overlap < bestOverlap || (overlap == bestOverlap && cosine > bestCos))
             bestOverlap = overlap, bestCos = cosine, best = candidate;
     };
@@ -160,16 +173,19 @@ Vec3 refineNormal(const Vec3& normal, const FeatureGeometry& a, const FeatureGeo
         consider(-b.planeNormal);
         for (const FeatureGeometry& face : b.capFaces) consider(-face.planeNormal);
     }
-    if (bestCos > -2) return best;
+    if (bestCos > -2) {
+        normal = best, normalOverlap = bestOverlap;
+        return;
+    }
     if (a.type == FeatureType::Edge && b.type == FeatureType::Edge) {
         Vec3 perpendicular = (a.points[1] - a.points[0]).cross(b.points[1] - b.points[0]);
         double scale = (a.points[1] - a.points[0]).norm() * (b.points[1] - b.points[0]).norm();
         if (perpendicular.norm() > 1e-6 * scale) {
             perpendicular.normalize();
-            return perpendicular.dot(normal) < 0 ? -perpendicular : perpendicular;
+            normal = perpendicular.dot(normal) < 0 ? -perpendicular : perpendicular;
+            normalOverlap = pair.overlapAlong(normal);
         }
     }
-    return normal;
 }
 
 // Writes the chosen points to the manifold, mapping from the common frame to the world.
@@ -206,7 +222,9 @@ Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const 
     // Stage 1: contact normal from the growth distance.
     const GrowthDistance growth = growthDistance(a, b, bInA, settings, /*needWitnesses=*/false);
     Vec3 normal = growth.valid ? growth.normal : minimumOverlapFaceNormal(pair);
-    if (pair.overlapAlong(normal) < -settings.margin - tolerance) return manifold;  // separated along n
+    // The pair's overlap along `normal`, kept in step with it (several steps below need it).
+    double normalOverlap = pair.overlapAlong(normal);
+    if (normalOverlap < -settings.margin - tolerance) return manifold;  // separated along n
 
     // Stage 2: one Gauss-map feature per body (B's searched in its own frame with −n).
     const AngularTolerance angularTolerance(settings.angularTolerance);
@@ -218,14 +236,15 @@ Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const 
     selectFeatures(normal);
     // Stage 1's check of the growth-distance normal against the faces around the two features
     // (the overhang fix); the features are then those of the corrected normal.
-    if (growth.valid && preferNearbyFaceNormal(pair, manifold.featureA, manifold.featureB, tolerance, normal)) {
-        if (pair.overlapAlong(normal) < -settings.margin - tolerance) return Manifold{};  // a separating face
+    if (growth.valid && preferNearbyFaceNormal(pair, manifold.featureA, manifold.featureB, tolerance, normal,
+                                              normalOverlap)) {
+        if (normalOverlap < -settings.margin - tolerance) return Manifold{};  // a separating face
         selectFeatures(normal);
     }
     const FeatureGeometry featureA = featureGeometry(a, manifold.featureA, Pose{}, normal, angularTolerance);
     const FeatureGeometry featureB = featureGeometry(b, manifold.featureB, bInA, bInA.rotation.transpose() * -normal,
                                                      angularTolerance);
-    normal = refineNormal(normal, featureA, featureB, pair);
+    refineNormal(normal, normalOverlap, featureA, featureB, pair);
 
     // Stage 3: intersection in the contact plane, each point with its own depth.
     LiftedPoints kept = intersectFeatures(featureA, featureB, normal, tolerance, -settings.margin - tolerance);
@@ -245,7 +264,7 @@ Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const 
     constexpr double kDepthSlack = 0.01;
     double deepest = -INFINITY;
     for (const LiftedPoint& point : kept) deepest = std::max(deepest, point.depth);
-    if (deepest < pair.overlapAlong(normal) - tolerance) {
+    if (deepest < normalOverlap - tolerance) {
         const SeparationAlong separation = separationAlong(a, b, bInA, normal, settings);
         const double slack = (std::isfinite(deepest) ? kDepthSlack * std::abs(deepest) : 0.0) + tolerance;
         if (kept.empty() && separation.valid && separation.distance < -settings.margin - tolerance)
@@ -261,7 +280,7 @@ Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const 
         // The line along n misses A − B: the pair is apart, by at most the margin (the supports'
         // overlap along n passed the check above) — a speculative contact at the supports' gap.
         const Vec3 middle = 0.5 * (a.vertices()[pair.supportA(normal)] + pair.vertexB(pair.supportB(-normal)));
-        const double gap = pair.overlapAlong(normal);
+        const double gap = normalOverlap;
         if (gap < -settings.margin - tolerance) return Manifold{};
         kept.push_back({middle, gap, Vec2::Zero()});
     }

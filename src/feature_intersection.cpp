@@ -28,7 +28,7 @@ Polygon2 clipByConvexPolygon(const Polygon2& subject, const Polygon2& clip, doub
     Polygon2 current = subject, next;
     for (std::size_t e = 0; e < clip.size() && !current.empty(); ++e) {
         const Vec2& a = clip[e];
-        Vec2 edge = clip[(e + 1) % clip.size()] - a;
+        Vec2 edge = clip[e + 1 == clip.size() ? 0 : e + 1] - a;
         double length = edge.norm();
         if (!(length > 0)) continue;
         // Signed distance scaled by the edge length (> 0 inside); the slack is scaled to match.
@@ -37,15 +37,17 @@ Polygon2 clipByConvexPolygon(const Polygon2& subject, const Polygon2& clip, doub
         next.clear();
         const std::size_t n = current.size();
         const bool closed = n >= 3;
+        // Each point's distance is computed once and carried to the next step as `dp`.
+        double dp = distance(current[0]);
         for (std::size_t i = 0; i < n; ++i) {
             const Vec2& p = current[i];
-            double dp = distance(p);
             if (dp >= -slack) next.push_back(p);
             if ((!closed && i + 1 == n) || n == 1) break;
-            const Vec2& q = current[(i + 1) % n];
-            double dq = distance(q);
+            const Vec2& q = current[i + 1 == n ? 0 : i + 1];
+            const double dq = distance(q);
             if ((dp < -slack && dq > slack) || (dp > slack && dq < -slack))
                 next.push_back(p + (q - p) * (dp / (dp - dq)));
+            dp = dq;
         }
         current.swap(next);
     }
@@ -92,24 +94,47 @@ Polygon2 intersect2d(const Polygon2& a, const Polygon2& b, double tolerance) {
     return out;
 }
 
-// Height along n of the point of `feature` that projects to planar point q.
-double liftedHeight(const FeatureGeometry& feature, const Vec2& q, const Vec3& u, const Vec3& v, const Vec3& n) {
-    switch (feature.type) {
-        case FeatureType::Face: {
-            Vec3 base = q.x() * u + q.y() * v;
-            return (feature.planeOffset - feature.planeNormal.dot(base)) / feature.planeNormal.dot(n);
-        }
-        case FeatureType::Edge: {
+// Height along n of the point of a feature that projects to a planar point. What does not depend
+// on the point (a face's n-component, an edge's projected ends) is computed once per feature, not
+// once per intersection point; the arithmetic per point is unchanged.
+class LiftedHeight {
+public:
+    LiftedHeight(const FeatureGeometry& feature, const Vec3& u, const Vec3& v, const Vec3& n)
+        : feature_(feature), u_(u), v_(v), n_(n) {
+        if (feature.type == FeatureType::Face) {
+            normalAlongN_ = feature.planeNormal.dot(n);
+        } else if (feature.type == FeatureType::Edge) {
             const Vec3 &p0 = feature.points[0], &p1 = feature.points[1];
-            Vec2 e0(p0.dot(u), p0.dot(v)), e1(p1.dot(u), p1.dot(v));
-            Vec2 d = e1 - e0;
-            double t = d.squaredNorm() > 0 ? (q - e0).dot(d) / d.squaredNorm() : 0.0;
-            return (p0 + t * (p1 - p0)).dot(n);
+            end0_ = Vec2(p0.dot(u), p0.dot(v));
+            along_ = Vec2(p1.dot(u), p1.dot(v)) - end0_;
+            alongSquared_ = along_.squaredNorm();
+        } else {
+            vertexHeight_ = feature.points[0].dot(n);
         }
-        case FeatureType::Vertex:
-        default: return feature.points[0].dot(n);
     }
-}
+
+    double operator()(const Vec2& q) const {
+        switch (feature_.type) {
+            case FeatureType::Face: {
+                Vec3 base = q.x() * u_ + q.y() * v_;
+                return (feature_.planeOffset - feature_.planeNormal.dot(base)) / normalAlongN_;
+            }
+            case FeatureType::Edge: {
+                const Vec3 &p0 = feature_.points[0], &p1 = feature_.points[1];
+                double t = alongSquared_ > 0 ? (q - end0_).dot(along_) / alongSquared_ : 0.0;
+                return (p0 + t * (p1 - p0)).dot(n_);
+            }
+            case FeatureType::Vertex:
+            default: return vertexHeight_;
+        }
+    }
+
+private:
+    const FeatureGeometry& feature_;
+    const Vec3 &u_, &v_, &n_;
+    double normalAlongN_ = 0, alongSquared_ = 0, vertexHeight_ = 0;
+    Vec2 end0_ = Vec2::Zero(), along_ = Vec2::Zero();
+};
 
 }  // namespace
 
@@ -133,8 +158,9 @@ LiftedPoints intersectSingle(const FeatureGeometry& a, const FeatureGeometry& b,
     while (unique.size() > 1 && (unique[0] - unique.back()).norm() <= tolerance) unique.pop_back();
 
     LiftedPoints lifted;
+    const LiftedHeight liftA(a, u, v, normal), liftB(b, u, v, normal);
     for (const Vec2& q : unique) {
-        double heightA = liftedHeight(a, q, u, v, normal), heightB = liftedHeight(b, q, u, v, normal);
+        double heightA = liftA(q), heightB = liftB(q);
         if (heightA - heightB < minimumDepth) continue;
         lifted.push_back({q.x() * u + q.y() * v + 0.5 * (heightA + heightB) * normal, heightA - heightB, q});
     }

@@ -58,18 +58,31 @@ void faceCap(const Polytope& polytope, int face, const Vec3& direction, const An
              SmallVector<int, 8>& faces) {
     faces.clear();
     faces.push_back(face);
+    // A box's other faces are perpendicular or opposite to this one; when it lies within the
+    // tolerance of `direction` they are at least 90° − tolerance away from it, outside the
+    // tolerance whenever that is below 45° (the bound used, ~41°, leaves a wide margin for
+    // rounding). The cap is then the face alone, found without the search.
+    constexpr double kCosineOf41Degrees = 0.75;
+    if (polytope.isBox() && tolerance.cosine > kCosineOf41Degrees &&
+        polytope.faces()[face].normal.dot(direction) >= tolerance.cosine)
+        return;
     auto contains = [&](int f) {
         for (int g : faces)
             if (g == f) return true;
         return false;
     };
-    // Breadth first over faces sharing a vertex; a box's neighbours fail the test at once.
+    // Breadth first over faces sharing a vertex; a box's neighbours fail the test at once. The
+    // adjacency arrays are read through plain pointers so their bounds are not reloaded after
+    // every push_back.
+    const int* faceVertices = polytope.faceVertices().data();
+    const int* offsets = polytope.vertexFaceOffsets().data();
+    const int* vertexFaces = polytope.vertexFaces().data();
     for (std::size_t next = 0; next < faces.size(); ++next) {
         const Polytope::Face& current = polytope.faces()[faces[next]];
         for (int i = 0; i < current.count; ++i) {
-            const int vertex = polytope.faceVertices()[current.first + i];
-            for (int k = polytope.vertexFaceOffsets()[vertex]; k < polytope.vertexFaceOffsets()[vertex + 1]; ++k) {
-                const int candidate = polytope.vertexFaces()[k];
+            const int vertex = faceVertices[current.first + i];
+            for (int k = offsets[vertex], end = offsets[vertex + 1]; k < end; ++k) {
+                const int candidate = vertexFaces[k];
                 if (polytope.faces()[candidate].normal.dot(direction) < tolerance.cosine || contains(candidate)) continue;
                 if (static_cast<int>(faces.size()) >= kMaxCapFaces) return;
                 faces.push_back(candidate);
