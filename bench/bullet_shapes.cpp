@@ -48,8 +48,11 @@ int bulletBoxBox(const btBoxShape& a, const btTransform& poseA, const btBoxShape
     return out.count;
 }
 
-int bulletGjkEpa(const btConvexShape& a, const btTransform& poseA, const btConvexShape& b,
-                 const btTransform& poseB, BulletContacts& out) {
+namespace {
+
+/// Bullet's GJK (with EPA for overlapping shapes): the closest points, or the deepest one.
+BulletContacts gjkEpaClosest(const btConvexShape& a, const btTransform& poseA, const btConvexShape& b,
+                             const btTransform& poseB) {
     btVoronoiSimplexSolver simplex;
     btGjkEpaPenetrationDepthSolver epa;
     btGjkPairDetector detector(&a, &b, &simplex, &epa);
@@ -58,6 +61,14 @@ int bulletGjkEpa(const btConvexShape& a, const btTransform& poseA, const btConve
     input.m_transformB = poseB;
     BulletContacts closest;
     detector.getClosestPoints(input, closest, nullptr);
+    return closest;
+}
+
+}  // namespace
+
+int bulletGjkEpa(const btConvexShape& a, const btTransform& poseA, const btConvexShape& b,
+                 const btTransform& poseB, BulletContacts& out) {
+    const BulletContacts closest = gjkEpaClosest(a, poseA, b, poseB);
     // GJK also reports the closest points of separated shapes; count only touching ones, as the others do.
     if (closest.count > 0 && closest.deepest >= 0) {
         if (out.count < BulletContacts::kKeptPositions) out.positions[out.count] = closest.positions[0];
@@ -84,14 +95,7 @@ int clip(const btConvexHullShape& a, const btTransform& poseA, const btConvexHul
 
 int bulletGjkClip(const btConvexHullShape& a, const btTransform& poseA, const btConvexHullShape& b,
                   const btTransform& poseB, BulletContacts& out) {
-    btVoronoiSimplexSolver simplex;
-    btGjkEpaPenetrationDepthSolver epa;
-    btGjkPairDetector detector(&a, &b, &simplex, &epa);
-    btDiscreteCollisionDetectorInterface::ClosestPointInput input;
-    input.m_transformA = poseA;
-    input.m_transformB = poseB;
-    BulletContacts closest;
-    detector.getClosestPoints(input, closest, nullptr);
+    const BulletContacts closest = gjkEpaClosest(a, poseA, b, poseB);
     if (closest.count == 0 || closest.deepest < 0) return out.count;
     const Vec3 normalOnB = -closest.normal;
     return clip(a, poseA, b, poseB, btVector3(normalOnB.x(), normalOnB.y(), normalOnB.z()), -closest.deepest, out);

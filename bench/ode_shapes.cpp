@@ -2,22 +2,28 @@
 
 namespace gdcbench {
 
+namespace {
+
+/// ODE's row-major 3×4 rotation layout (the fourth column unused).
+void toOdeRotation(const Mat3& from, dMatrix3 to) {
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) to[4 * i + j] = from(i, j);
+        to[4 * i + 3] = 0;
+    }
+}
+
+}  // namespace
+
 void setGeomPose(dGeomID geom, const Pose& pose) {
     dMatrix3 rotation;
-    for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) rotation[4 * i + j] = pose.rotation(i, j);
-        rotation[4 * i + 3] = 0;
-    }
+    toOdeRotation(pose.rotation, rotation);
     dGeomSetRotation(geom, rotation);
     dGeomSetPosition(geom, pose.position.x(), pose.position.y(), pose.position.z());
 }
 
 void setBodyPose(dBodyID body, const Pose& pose) {
     dMatrix3 rotation;
-    for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) rotation[4 * i + j] = pose.rotation(i, j);
-        rotation[4 * i + 3] = 0;
-    }
+    toOdeRotation(pose.rotation, rotation);
     dBodySetRotation(body, rotation);
     dBodySetPosition(body, pose.position.x(), pose.position.y(), pose.position.z());
 }

@@ -294,6 +294,13 @@ def profile_section(results):
 # ---- plots ------------------------------------------------------------------------------------------
 
 
+def save_figure(fig, path):
+    """Writes the figure to path and closes it."""
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
 def plot_pairs(pairs, path):
     keys = [(k, label) for k, label, _ in PAIR_CONTENDERS if any(("box_box", c, k) in pairs for c in PAIR_CASES)]
     fig, ax = plt.subplots(figsize=(11, 5))
@@ -307,9 +314,7 @@ def plot_pairs(pairs, path):
     ax.set_ylabel("CPU ns per call (median)")
     ax.set_title("Cube pair, canonical configurations")
     ax.legend(fontsize=7, ncol=2)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path)
 
 
 def plot_sizes(pairs, path):
@@ -327,9 +332,7 @@ def plot_sizes(pairs, path):
     ax.set_title("Cost growth with hull size (resting contact, 16 random poses)")
     ax.legend(fontsize=8)
     ax.grid(True, which="both", alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path)
 
 
 def pareto_front(points):
@@ -390,9 +393,7 @@ def plot_pareto(rows, path):
     ax.set_ylabel("normal error vs exact minimum normal, p95 (°) + 1e-4")
     ax.set_title("Normal, 64-vertex hulls: settings (blue), ODE/Bullet (red), stage 1 alone (green)")
     ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path)
 
 
 def plot_scenes(scenes, path):
@@ -405,9 +406,7 @@ def plot_scenes(scenes, path):
     ax.set_ylabel("CPU ms per step")
     ax.set_title("Step time split")
     ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    save_figure(fig, path)
 
 
 # ---- document -------------------------------------------------------------------------------------

@@ -88,6 +88,15 @@ def ratio(numerator, denominator):
     return numerator / denominator
 
 
+def save_figure(figure, results, name):
+    """Writes the figure to results/name, closes it and returns the file name for the report."""
+    figure.tight_layout()
+    path = os.path.join(results, name)
+    figure.savefig(path, dpi=110)
+    plt.close(figure)
+    return os.path.basename(path)
+
+
 def plot_box_drop(runs, results):
     figure, axes = plt.subplots(3, 1, figsize=(9, 10), sharex=True)
     panels = [("penetration", "penetration error (m)"), ("alignment", "alignment error (rad)"),
@@ -108,11 +117,7 @@ def plot_box_drop(runs, results):
     axes[0].legend(fontsize=8, ncol=2)
     axes[0].set_title("Box drop (paper Fig. 9): settling after t = 2 s (dashed line)")
     axes[-1].set_xlabel("time (s)")
-    figure.tight_layout()
-    path = os.path.join(results, "box_drop_errors.png")
-    figure.savefig(path, dpi=110)
-    plt.close(figure)
-    return os.path.basename(path)
+    return save_figure(figure, results, "box_drop_errors.png")
 
 
 def plot_wall(runs, results):
@@ -138,11 +143,7 @@ def plot_wall(runs, results):
     axis.grid(True, alpha=0.3)
     if any_line:
         axis.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-    figure.tight_layout()
-    path = os.path.join(results, "brick_wall_displacement.png")
-    figure.savefig(path, dpi=110)
-    plt.close(figure)
-    return os.path.basename(path)
+    return save_figure(figure, results, "brick_wall_displacement.png")
 
 
 def plot_tower(runs, results):
@@ -173,11 +174,7 @@ def plot_tower(runs, results):
     axes[1].set_xlabel("time (s)")
     axes[0].legend(fontsize=8)
     axes[0].set_title("Tower (paper Fig. 5–6): tilt under the downward push on the top object")
-    figure.tight_layout()
-    path = os.path.join(results, "tower_tilt.png")
-    figure.savefig(path, dpi=110)
-    plt.close(figure)
-    return os.path.basename(path)
+    return save_figure(figure, results, "tower_tilt.png")
 
 
 def plot_composites(runs, results):
@@ -194,11 +191,7 @@ def plot_composites(runs, results):
     axis.set_title("Composites (paper Fig. 10): penetration while dropping and stacking")
     axis.grid(True, alpha=0.3)
     axis.legend(fontsize=8)
-    figure.tight_layout()
-    path = os.path.join(results, "composites_penetration.png")
-    figure.savefig(path, dpi=110)
-    plt.close(figure)
-    return os.path.basename(path)
+    return save_figure(figure, results, "composites_penetration.png")
 
 
 def command_output(command):

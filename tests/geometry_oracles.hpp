@@ -17,7 +17,9 @@ inline Mat3 rotationAbout(const Vec3& axis, double angle) {
     return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
 }
 
-inline Mat3 randomRotation(std::mt19937& random) {
+/// Uniformly distributed rotation (normalised Gaussian quaternion) from any standard random engine.
+template <class RandomEngine>
+Mat3 randomRotation(RandomEngine& random) {
     std::normal_distribution<double> gauss;
     Eigen::Quaterniond q(gauss(random), gauss(random), gauss(random), gauss(random));
     return q.normalized().toRotationMatrix();

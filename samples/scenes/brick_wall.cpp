@@ -112,10 +112,8 @@ private:
     double currentMaxDisplacement() const {
         if (!atRest()) return 0.0;
         double worst = 0.0;
-        for (const Body& body : bodies()) {
-            const dReal* p = dBodyGetPosition(body.body);
-            worst = std::max(worst, (Vec3(p[0], p[1], p[2]) - body.restPose.position).norm());
-        }
+        for (const Body& body : bodies())
+            worst = std::max(worst, (bodyPosition(body.body) - body.restPose.position).norm());
         return worst;
     }
 

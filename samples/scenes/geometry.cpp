@@ -7,8 +7,6 @@
 namespace gdc::scenes {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 /// Unit directions of a polytope's edges in the world, parallel duplicates removed (a box has 12
 /// edges but 3 directions; the SAT needs each direction once).
 std::vector<Vec3> edgeDirections(const Polytope& shape, const Mat3& rotation) {

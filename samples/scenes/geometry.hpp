@@ -13,6 +13,8 @@
 
 namespace gdc::scenes {
 
+inline constexpr double kPi = 3.14159265358979323846;
+
 /// Exact penetration depth (minimum translation distance, metres) of two convex polytopes by the
 /// separating axis theorem over every face normal and every edge-edge cross product; 0 when they
 /// are separated or touching. Independent of every contact method, so it can judge all of them.

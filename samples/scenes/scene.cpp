@@ -81,6 +81,32 @@ const char* stepperName(SolverSettings::Stepper stepper) {
     return stepper == SolverSettings::Stepper::World ? "world" : "quick";
 }
 
+SolverSettings exactStackingSolver() {
+    SolverSettings solver;
+    solver.stepper = SolverSettings::Stepper::World;
+    solver.maxContactsPerPair = 4;
+    solver.dt = 0.01;
+    return solver;
+}
+
+Vec3 bodyPosition(dBodyID body) {
+    const dReal* p = dBodyGetPosition(body);
+    return Vec3(p[0], p[1], p[2]);
+}
+
+Vec3 bodyUpAxis(dBodyID body) {
+    const dReal* r = dBodyGetRotation(body);
+    return Vec3(r[2], r[6], r[10]);
+}
+
+double bodyTilt(dBodyID body) { return angleFromVertical(bodyUpAxis(body)); }
+
+double worldHeight(const Part& part, const Vec3& vertex) {
+    const dReal* p = dGeomGetPosition(part.geom);
+    const dReal* r = dGeomGetRotation(part.geom);
+    return r[8] * vertex.x() + r[9] * vertex.y() + r[10] * vertex.z() + p[2];
+}
+
 /// What the collision pass needs to know about a geom, and the per-step scratch.
 struct Scene::Impl {
     struct GeomInfo {

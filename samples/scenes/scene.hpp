@@ -54,6 +54,13 @@ struct SolverSettings {
 };
 const char* stepperName(SolverSettings::Stepper stepper);       // "world", "quick"
 
+/// The solver of the stacking scenes (tower, composites): the exact LCP stepper, so that what the
+/// bodies do is the contacts' doing and not an iterative solver's (docs/measures.md: absolute claims
+/// under dWorldStep). Four contacts per pair of parts span a face contact and keep the LCP small
+/// enough for interactive rates (a gear touches with up to nine parts); the same cap applies to
+/// every method.
+SolverSettings exactStackingSolver();
+
 /// Construction options every scene understands. Scenes with a box-shaped body let `convexBoxes`
 /// choose whether it is an ODE dBox or a dConvex of the same box (ODE's native collider differs).
 struct SceneOptions {
@@ -68,6 +75,15 @@ struct Part {
     dGeomID geom = nullptr;
     std::shared_ptr<const gdc::Polytope> shape;
 };
+
+/// World position of a body's centre of mass.
+gdc::Vec3 bodyPosition(dBodyID body);
+/// The body's local +z axis in the world frame.
+gdc::Vec3 bodyUpAxis(dBodyID body);
+/// Angle (rad) between the body's local +z axis and the world's.
+double bodyTilt(dBodyID body);
+/// World height (z) of a vertex given in a part's geom frame.
+double worldHeight(const Part& part, const gdc::Vec3& vertex);
 
 /// A body of the scene as the viewer and the reports see it.
 struct Body {

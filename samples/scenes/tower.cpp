@@ -12,11 +12,9 @@
 namespace gdc::scenes {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 class Tower final : public Scene {
 public:
-    explicit Tower(const SceneOptions& options) : Scene("tower", options, solverDefaults()) {}
+    explicit Tower(const SceneOptions& options) : Scene("tower", options, exactStackingSolver()) {}
 
     double duration() const override { return kPushEnd + kObserveAfterPush; }
     double pushForce() const override { return towerWeight_; }
@@ -80,18 +78,6 @@ private:
     static constexpr double kReleaseGap = 0.003;     // m above the tower top when let go
     static constexpr double kStackedOffset = 0.05;   // m: farther from its place, a level has fallen
     static constexpr double kStackedTilt = 0.1;      // rad (5.7°): more, and it no longer rests flat
-
-    static SolverSettings solverDefaults() {
-        // The exact LCP stepper, so that what the bodies do is the contacts' doing and not an
-        // iterative solver's (docs/measures.md: absolute claims under dWorldStep). Four contacts per
-        // pair of parts span a face contact and keep the LCP small enough for interactive rates
-        // (a gear touches with up to nine parts); the same cap applies to every method.
-        SolverSettings solver;
-        solver.stepper = SolverSettings::Stepper::World;
-        solver.maxContactsPerPair = 4;
-        solver.dt = 0.01;
-        return solver;
-    }
 
     struct Level {
         dBodyID body = nullptr;
@@ -169,26 +155,14 @@ private:
         return nullptr;
     }
 
-    static Vec3 positionOf(dBodyID body) {
-        const dReal* p = dBodyGetPosition(body);
-        return Vec3(p[0], p[1], p[2]);
-    }
-    static Vec3 upAxisOf(dBodyID body) {
-        const dReal* r = dBodyGetRotation(body);
-        return Vec3(r[2], r[6], r[10]);
-    }
-    static double tiltOf(dBodyID body) { return angleFromVertical(upAxisOf(body)); }
-
     /// Lowest and highest vertex heights of a body.
     std::pair<double, double> heightRange(dBodyID id) const {
         double low = 1e300, high = -1e300;
         for (const Body& body : bodies()) {
             if (body.body != id) continue;
             for (const Part& part : body.parts) {
-                const dReal* p = dGeomGetPosition(part.geom);
-                const dReal* r = dGeomGetRotation(part.geom);
                 for (const Vec3& v : part.shape->vertices()) {
-                    const double z = r[8] * v.x() + r[9] * v.y() + r[10] * v.z() + p[2];
+                    const double z = worldHeight(part, v);
                     low = std::min(low, z);
                     high = std::max(high, z);
                 }
@@ -202,19 +176,19 @@ private:
     int stackedLevels() const {
         int count = 0;
         for (int k = 0; k < placed_; ++k) {
-            const Vec3 position = positionOf(levels_[k].body);
+            const Vec3 position = bodyPosition(levels_[k].body);
             const double offset = (position.head<2>() - levels_[k].target.head<2>()).norm();
-            if (offset > kStackedOffset || tiltOf(levels_[k].body) > kStackedTilt) break;
-            if (k > 0 && position.z() <= positionOf(levels_[k - 1].body).z()) break;
+            if (offset > kStackedOffset || bodyTilt(levels_[k].body) > kStackedTilt) break;
+            if (k > 0 && position.z() <= bodyPosition(levels_[k - 1].body).z()) break;
             ++count;
         }
         return count;
     }
 
-    double topTilt() const { return levels_.empty() ? 0.0 : tiltOf(levels_.back().body); }
+    double topTilt() const { return levels_.empty() ? 0.0 : bodyTilt(levels_.back().body); }
 
     Vec3 leanVector() const {
-        return positionOf(levels_.back().body) - positionOf(levels_.front().body);
+        return bodyPosition(levels_.back().body) - bodyPosition(levels_.front().body);
     }
 
     static double angleBetween(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); }
@@ -248,7 +222,7 @@ private:
             double towerTop = 0.0;
             for (int k = 0; k < placed_; ++k) towerTop = std::max(towerTop, heightRange(levels_[k].body).second);
             const auto [low, high] = heightRange(level.body);
-            const Vec3 position = positionOf(level.body);
+            const Vec3 position = bodyPosition(level.body);
             level.pickup = position;
             level.releaseHeight = towerTop + kReleaseGap + (position.z() - low);
             level.clearance = std::max(level.releaseHeight, towerTop + (position.z() - low)) + (high - low) + 0.15;
@@ -277,7 +251,7 @@ private:
             return;
         }
         // Kinematic bodies move by their velocity: aim at where the path is one step ahead.
-        const Vec3 velocity = (carryPath(level, since + dt) - positionOf(level.body)) / dt;
+        const Vec3 velocity = (carryPath(level, since + dt) - bodyPosition(level.body)) / dt;
         dBodySetLinearVel(level.body, velocity.x(), velocity.y(), velocity.z());
     }
 

@@ -2,6 +2,8 @@
 // dCollide, rotations.
 #pragma once
 
+#include "geometry_oracles.hpp"  // tests/: rotationAbout, randomRotation
+
 #include <gdcontact/ode.hpp>
 
 #include <ode/ode.h>
@@ -49,15 +51,8 @@ inline void setPose(dGeomID geom, const Pose& pose) {
     setRotation(geom, pose.rotation);
 }
 
-inline Mat3 rotationAbout(const Vec3& axis, double angle) {
-    return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
-}
-
-inline Mat3 randomRotation(std::mt19937_64& random) {
-    std::normal_distribution<double> gauss;
-    Eigen::Quaterniond q(gauss(random), gauss(random), gauss(random), gauss(random));
-    return q.normalized().toRotationMatrix();
-}
+using gdc::testing::randomRotation;
+using gdc::testing::rotationAbout;
 
 /// Corners of an axis-aligned box of half extents h, as x,y,z triples for createConvex.
 inline std::vector<dReal> boxCorners(const Vec3& h) {

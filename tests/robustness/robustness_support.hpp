@@ -3,6 +3,8 @@
 // normal and every pair of edge directions (exact for convex polytopes), never a GJK.
 #pragma once
 
+#include "geometry_oracles.hpp"  // tests/: rotationAbout, randomRotation
+
 #include <gdcontact/gdcontact.hpp>
 
 #include <algorithm>
@@ -16,15 +18,8 @@
 
 namespace gdc::robustness {
 
-inline Mat3 rotationAbout(const Vec3& axis, double angle) {
-    return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
-}
-
-inline Mat3 randomRotation(std::mt19937_64& random) {
-    std::normal_distribution<double> gauss;
-    Eigen::Quaterniond q(gauss(random), gauss(random), gauss(random), gauss(random));
-    return q.normalized().toRotationMatrix();
-}
+using gdc::testing::randomRotation;
+using gdc::testing::rotationAbout;
 
 inline Vec3 randomDirection(std::mt19937_64& random) {
     std::normal_distribution<double> gauss;

@@ -2,6 +2,7 @@
 // each scene's qualitative outcome, and the API's promises (determinism, run-time method switch,
 // removal, valid contacts).
 #include "scene.hpp"
+#include "ode_session.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -15,12 +16,7 @@ using namespace gdc::scenes;
 namespace {
 
 /// ODE's global state for one test case; scenes must be destroyed before it (declare it first).
-struct OdeSession {
-    OdeSession() { dInitODE2(0); }
-    ~OdeSession() { dCloseODE(); }
-    OdeSession(const OdeSession&) = delete;
-    OdeSession& operator=(const OdeSession&) = delete;
-};
+using gdc::testing::OdeSession;
 
 double value(const Outcome& outcome, const std::string& name) {
     for (const auto& [key, number] : outcome.values)

@@ -2,6 +2,7 @@
 // casts against convex meshes (analytic and brute-force oracle), reading geoms out of a real ODE
 // space, and the drag spring in a real ODE world.
 #include "camera.hpp"
+#include "ode_session.hpp"
 #include "convex_mesh.hpp"
 #include "scene_shapes.hpp"
 #include "spring_drag.hpp"
@@ -19,11 +20,7 @@ using namespace gdc::viewer;
 namespace {
 
 // ODE must be initialised once per process before any world or geom.
-struct OdeSession {
-    OdeSession() { dInitODE2(0); }
-    ~OdeSession() { dCloseODE(); }
-};
-void needOde() { static OdeSession session; }
+void needOde() { static gdc::testing::OdeSession session; }
 
 Mat3 rotation(double angle, const Vec3& axis) { return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix(); }
 

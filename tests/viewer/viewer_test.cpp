@@ -3,6 +3,7 @@
 // the mouse moves it towards the cursor; ctrl-click removes a brick; the headless command writes
 // a screenshot of each scene.
 #include "image.hpp"
+#include "ode_session.hpp"
 #include "viewer.hpp"
 #include "x_server.hpp"
 
@@ -19,10 +20,7 @@ using namespace gdc::viewer;
 
 namespace {
 
-struct OdeSession {
-    OdeSession() { dInitODE2(0); }
-    ~OdeSession() { dCloseODE(); }
-};
+using gdc::testing::OdeSession;
 
 ViewerOptions testOptions(const std::string& scene) {
     ViewerOptions options;
