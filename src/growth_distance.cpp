@@ -142,6 +142,33 @@ SimplexClosest closestPointToOrigin(const std::array<Vec3, 4>& points, int count
     }
 }
 
+namespace {
+
+// Where the ray from the origin along the unit `direction` leaves the convex set of `support`
+// (which contains the origin): a GJK ray cast fired back from beyond the set's support plane in
+// that direction, so the cast always starts outside. `exitDistance` = start − lambda.
+template <class Support>
+RayCastResult castExitAlong(const Support& support, const Vec3& direction, double size, const Settings& settings,
+                            double& exitDistance) {
+    const double start = direction.dot(support(direction).point) + 0.5 * size;
+    RayCastResult cast = gjkRayCast(support, start * direction, -direction, settings.rayCastTolerance * size,
+                                    settings.maxRayCastIterations);
+    exitDistance = start - cast.lambda;
+    return cast;
+}
+
+// The points of A and B (A's frame) whose difference is the cast's hit, from its final simplex.
+void castWitnesses(const RayCastResult& cast, const MinkowskiDifference& difference, Vec3& onA, Vec3& onB) {
+    onA.setZero();
+    onB.setZero();
+    for (int i = 0; i < cast.simplexCount; ++i) {
+        onA += cast.weights[i] * difference.a.vertices()[cast.simplex[i].vertexA];
+        onB += cast.weights[i] * difference.vertexB(cast.simplex[i].vertexB);
+    }
+}
+
+}  // namespace
+
 GrowthDistance growthDistance(const Polytope& a, const Polytope& b, const Pose& bInA, const Settings& settings,
                               bool needWitnesses) {
     GrowthDistance result;
@@ -156,50 +183,36 @@ GrowthDistance growthDistance(const Polytope& a, const Polytope& b, const Pose& 
     if (a.isBox() && b.isBox() && !needWitnesses)
         return boxGrowthDistance(a.boxHalfExtents(), b.boxHalfExtents(), bInA.rotation, w, separation);
     auto support = [&](const Vec3& direction) { return difference.centred(direction); };
-    // Start outside C on the ray's line: beyond C's support plane in direction w.
-    const double start = w.dot(support(w).point) + 0.5 * size;
-    const Vec3 origin = start * w;
-    RayCastResult cast = gjkRayCast(support, origin, -w, settings.rayCastTolerance * size,
-                                    settings.maxRayCastIterations);
+    double exitDistance = 0;  // h
+    RayCastResult cast = castExitAlong(support, w, size, settings, exitDistance);
     result.iterations = cast.iterations;
     if (!cast.hit || !(cast.normal.squaredNorm() > 0) || !cast.normal.allFinite()) return result;
-    const double exitDistance = start - cast.lambda;  // h
     if (!(exitDistance > 0)) return result;
     result.valid = true;
     result.hasWitnesses = true;
     result.normal = cast.normal.normalized();
     result.growth = separation / exitDistance;
-    result.witnessA.setZero();
-    result.witnessB.setZero();
-    for (int i = 0; i < cast.simplexCount; ++i) {
-        result.witnessA += cast.weights[i] * a.vertices()[cast.simplex[i].vertexA];
-        result.witnessB += cast.weights[i] * difference.vertexB(cast.simplex[i].vertexB);
-    }
+    castWitnesses(cast, difference, result.witnessA, result.witnessB);
     return result;
 }
 
 SeparationAlong separationAlong(const Polytope& a, const Polytope& b, const Pose& bInA, const Vec3& normal,
                                 const Settings& settings) {
     // A − B contains the origin when the pair overlaps; B moved by t·normal still overlaps A while
-    // t·normal ∈ A − B, so the separating translation is where that ray leaves A − B. Cast back
-    // from beyond A − B's support plane (as for the growth distance), so the cast starts outside.
+    // t·normal ∈ A − B, so the separating translation is where that ray leaves A − B. Cast
+    // back from beyond A − B's support plane (castExitAlong), as for the growth distance.
     SeparationAlong result;
     const MinkowskiDifference difference(a, b, bInA, settings.bruteForceSupportLimit);
     auto support = [&](const Vec3& direction) {
         const int ia = difference.supportA(direction), ib = difference.supportB(-direction);
         return SupportPoint{a.vertices()[ia] - difference.vertexB(ib), ia, ib};
     };
-    const double size = a.radius() + b.radius();
-    const double start = normal.dot(support(normal).point) + 0.5 * size;
-    RayCastResult cast = gjkRayCast(support, start * normal, -normal, settings.rayCastTolerance * size,
-                                    settings.maxRayCastIterations);
+    double distance = 0;
+    RayCastResult cast = castExitAlong(support, normal, a.radius() + b.radius(), settings, distance);
     if (!cast.hit || cast.simplexCount == 0) return result;
     result.valid = true;
-    result.distance = start - cast.lambda;
-    for (int i = 0; i < cast.simplexCount; ++i) {
-        result.witnessA += cast.weights[i] * a.vertices()[cast.simplex[i].vertexA];
-        result.witnessB += cast.weights[i] * difference.vertexB(cast.simplex[i].vertexB);
-    }
+    result.distance = distance;
+    castWitnesses(cast, difference, result.witnessA, result.witnessB);
     return result;
 }
 
