@@ -8,6 +8,7 @@
 #include "minkowski.hpp"
 #include "reduction.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace gdc {
@@ -66,6 +67,32 @@ bool preferNearbyFaceNormal(const MinkowskiDifference& pair, const Feature& feat
     const double current = normalOverlap;
     if (!(current > tolerance)) return false;  // touching or apart along n: n already separates them
     const double limit = kClearlySmallerOverlap * current;
+    // The features' own vertices (A's frame) bound every candidate's overlap from below: along c
+    // the pair overlaps by at least max c·(A's feature) − min c·(B's feature), since those points
+    // belong to A and B. Where that bound already reaches the limit, the two support searches of
+    // overlapAlong cannot change the verdict and are skipped — for a face resting on a face the
+    // bound along each side face is its exact overlap, the extent of the bodies, far above it.
+    // The bound must clear the limit by `tolerance`, so that rounding (the support search
+    // evaluates B in its own frame) cannot turn a skipped candidate into an accepted one.
+    SmallVector<Vec3, 16> pointsA, pointsB;
+    auto featurePoints = [](const Polytope& polytope, const Feature& feature, const Pose* toA,
+                            SmallVector<Vec3, 16>& out) {
+        int storage[2];
+        const int* indices = nullptr;
+        const int count = featureVertices(polytope, feature, &indices, storage);
+        for (int i = 0; i < count; ++i) {
+            const Vec3& vertex = polytope.vertices()[indices[i]];
+            out.push_back(toA ? toA->apply(vertex) : vertex);
+        }
+    };
+    featurePoints(pair.a, featureA, nullptr, pointsA);
+    featurePoints(pair.b, featureB, &pair.bInA, pointsB);
+    auto overlapLowerBound = [&](const Vec3& candidate) {
+        double highestA = -INFINITY, lowestB = INFINITY;
+        for (const Vec3& p : pointsA) highestA = std::max(highestA, candidate.dot(p));
+        for (const Vec3& q : pointsB) lowestB = std::min(lowestB, candidate.dot(q));
+        return highestA - lowestB;
+    };
     bool found = false;
     double bestOverlap = INFINITY, bestCos = -2;
     Vec3 best = normal;
@@ -75,6 +102,7 @@ bool preferNearbyFaceNormal(const MinkowskiDifference& pair, const Feature& feat
         for (int k : seen)
             if (k == face) return;
         seen.push_back(face);
+        if (overlapLowerBound(candidate) >= limit + tolerance) return;
         const double overlap = overlapAlong(pair, candidate, normal, current);
         if (!(overlap < limit)) return;
         const double cosine = candidate.dot(normal);
@@ -217,7 +245,13 @@ Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const 
     const double size = a.radius() + b.radius();
     const double tolerance = 1e-9 * size;
     // Bounding spheres about the centroids: the cheap early out for separated pairs.
-    if ((pair.centreB - pair.centreA).norm() > size + settings.margin) return manifold;
+    const Vec3 centreOffset = pair.centreB - pair.centreA;
+    const double centreDistance = centreOffset.norm();
+    if (centreDistance > size + settings.margin) return manifold;
+    // The line of centres is the likeliest separating axis of a pair whose spheres overlap: two
+    // support searches settle most separated pairs of a broad phase before the ray cast.
+    if (centreDistance > 0 && pair.overlapAlong(centreOffset / centreDistance) < -settings.margin - tolerance)
+        return manifold;
 
     // Stage 1: contact normal from the growth distance.
     const GrowthDistance growth = growthDistance(a, b, bInA, settings, /*needWitnesses=*/false);
@@ -229,15 +263,18 @@ Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const 
     // Stage 2: one Gauss-map feature per body (B's searched in its own frame with −n).
     const AngularTolerance angularTolerance(settings.angularTolerance);
     auto selectFeatures = [&](const Vec3& n) {
-        manifold.featureA = selectFeature(a, n, angularTolerance, settings.bruteForceSupportLimit);
-        manifold.featureB = selectFeature(b, bInA.rotation.transpose() * -n, angularTolerance,
-                                          settings.bruteForceSupportLimit);
+        const Vec3 directionB = bInA.rotation.transpose() * -n;
+        manifold.featureA = selectFeature(a, n, pair.supportA(n), angularTolerance);
+        manifold.featureB = selectFeature(b, directionB, pair.supportB(-n), angularTolerance);
     };
     selectFeatures(normal);
     // Stage 1's check of the growth-distance normal against the faces around the two features
     // (the overhang fix); the features are then those of the corrected normal.
-    if (growth.valid && preferNearbyFaceNormal(pair, manifold.featureA, manifold.featureB, tolerance, normal,
-                                              normalOverlap)) {
+    // It can only pick a face whose overlap is below half the normal's, so a lower bound of every
+    // face's overlap (the box pair has one) above that settles it without the search.
+    const bool noFaceClearlySmaller = growth.faceOverlapLowerBound >= kClearlySmallerOverlap * normalOverlap + tolerance;
+    if (growth.valid && !noFaceClearlySmaller &&
+        preferNearbyFaceNormal(pair, manifold.featureA, manifold.featureB, tolerance, normal, normalOverlap)) {
         if (normalOverlap < -settings.margin - tolerance) return Manifold{};  // a separating face
         selectFeatures(normal);
     }
@@ -312,7 +349,7 @@ Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b, const
     // The half-space's Gauss map is the single point −n, so its feature is its plane; A's
     // feature comes from its Gauss map as usual, and each of its vertices is lifted onto the plane.
     const AngularTolerance angularTolerance(settings.angularTolerance);
-    manifold.featureA = selectFeature(a, normal, angularTolerance, settings.bruteForceSupportLimit);
+    manifold.featureA = selectFeature(a, normal, deepest, angularTolerance);
     manifold.featureB = {FeatureType::Face, 0};
     int storage[2];
     const int* indices = nullptr;
@@ -327,18 +364,22 @@ Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b, const
             count = static_cast<int>(vertices.size());
         }
     }
-    Vec3 u, v;
-    planeBasis(normal, u, v);
     LiftedPoints kept;
     for (int i = 0; i < count; ++i) {
         const Vec3& x = a.vertices()[indices[i]];
         double depth = offset - m.dot(x);
-        if (depth >= -settings.margin - tolerance) kept.push_back({x + 0.5 * depth * m, depth, Vec2(x.dot(u), x.dot(v))});
+        if (depth >= -settings.margin - tolerance) kept.push_back({x + 0.5 * depth * m, depth, Vec2::Zero()});
     }
     if (kept.empty()) {  // a tilted face whose selected vertices all float: keep the deepest one
         const Vec3& x = a.vertices()[deepest];
         double depth = offset - m.dot(x);
-        kept.push_back({x + 0.5 * depth * m, depth, Vec2(x.dot(u), x.dot(v))});
+        kept.push_back({x + 0.5 * depth * m, depth, Vec2::Zero()});
+    }
+    // Planar coordinates serve only the reduction: computed when there is something to reduce.
+    if (static_cast<int>(kept.size()) > settings.maxContacts) {
+        Vec3 u, v;
+        planeBasis(normal, u, v);
+        for (LiftedPoint& point : kept) point.planar = Vec2(point.position.dot(u), point.position.dot(v));
     }
     emit(kept, normal, poseA, settings, manifold);
     return manifold;

@@ -14,8 +14,8 @@ Polygon2 project(const FeatureGeometry& feature, const Vec3& u, const Vec3& v) {
     Polygon2 out;
     for (const Vec3& p : feature.points) out.push_back(Vec2(p.dot(u), p.dot(v)));
     if (out.size() >= 3) {  // make it counter-clockwise in the plane (B's face arrives clockwise)
-        double area = 0;
-        for (std::size_t i = 0; i < out.size(); ++i) area += cross2(out[i], out[(i + 1) % out.size()]);
+        double area = cross2(out[out.size() - 1], out[0]);
+        for (std::size_t i = 0; i + 1 < out.size(); ++i) area += cross2(out[i], out[i + 1]);
         if (area < 0)
             for (std::size_t i = 0, j = out.size() - 1; i < j; ++i, --j) std::swap(out[i], out[j]);
     }
@@ -25,8 +25,12 @@ Polygon2 project(const FeatureGeometry& feature, const Vec3& u, const Vec3& v) {
 // Sutherland–Hodgman: clip a convex polygon (or a segment, or a point) by the half-planes left
 // of each CCW edge of `clip`.
 Polygon2 clipByConvexPolygon(const Polygon2& subject, const Polygon2& clip, double tolerance) {
-    Polygon2 current = subject, next;
-    for (std::size_t e = 0; e < clip.size() && !current.empty(); ++e) {
+    // Two buffers in turn; the subject itself is read by the first edge (no copy).
+    Polygon2 buffers[2];
+    const Polygon2* input = &subject;
+    for (std::size_t e = 0; e < clip.size() && !input->empty(); ++e) {
+        const Polygon2& current = *input;
+        Polygon2& next = buffers[e & 1];
         const Vec2& a = clip[e];
         Vec2 edge = clip[e + 1 == clip.size() ? 0 : e + 1] - a;
         double length = edge.norm();
@@ -49,9 +53,9 @@ Polygon2 clipByConvexPolygon(const Polygon2& subject, const Polygon2& clip, doub
                 next.push_back(p + (q - p) * (dp / (dp - dq)));
             dp = dq;
         }
-        current.swap(next);
+        input = &next;
     }
-    return current;
+    return *input;
 }
 
 Polygon2 intersectSegments(const Vec2& a0, const Vec2& a1, const Vec2& b0, const Vec2& b1, double tolerance) {
@@ -146,51 +150,83 @@ void planeBasis(const Vec3& n, Vec3& u, Vec3& v) {
 
 namespace {
 
-LiftedPoints intersectSingle(const FeatureGeometry& a, const FeatureGeometry& b, const Vec3& normal,
-                             double tolerance, double minimumDepth) {
-    Vec3 u, v;
-    planeBasis(normal, u, v);
-    Polygon2 region = intersect2d(project(a, u, v), project(b, u, v), tolerance);
+// A feature (or one face of a cap) projected onto the contact plane once: its CCW polygon, its
+// bounds there, and its lifting back along n.
+struct ProjectedPiece {
+    const FeatureGeometry* feature;
+    Polygon2 polygon;
+    Vec2 lower, upper;
+    LiftedHeight height;
+
+    ProjectedPiece(const FeatureGeometry& piece, const Vec3& u, const Vec3& v, const Vec3& n)
+        : feature(&piece), polygon(project(piece, u, v)), height(piece, u, v, n) {
+        lower = upper = polygon[0];
+        for (const Vec2& p : polygon) lower = lower.cwiseMin(p), upper = upper.cwiseMax(p);
+    }
+    bool boundsMeet(const ProjectedPiece& other, double tolerance) const {
+        return (lower.array() <= other.upper.array() + tolerance).all() &&
+               (other.lower.array() <= upper.array() + tolerance).all();
+    }
+};
+
+// The intersection vertices of two projected pieces, lifted onto both; appended to `out`, skipping
+// points within `tolerance` (in the plane) of one already there when `merge` (pieces of caps
+// share their edges' points).
+void intersectPieces(const ProjectedPiece& a, const ProjectedPiece& b, const Vec3& u, const Vec3& v,
+                     const Vec3& normal, double tolerance, double minimumDepth, bool merge, LiftedPoints& out) {
+    Polygon2 region = intersect2d(a.polygon, b.polygon, tolerance);
     // Drop near-duplicate consecutive points produced where edges cross at a vertex.
+    const double toleranceSquared = tolerance * tolerance;
     Polygon2 unique;
     for (const Vec2& p : region)
-        if (unique.empty() || (p - unique.back()).norm() > tolerance) unique.push_back(p);
-    while (unique.size() > 1 && (unique[0] - unique.back()).norm() <= tolerance) unique.pop_back();
+        if (unique.empty() || (p - unique.back()).squaredNorm() > toleranceSquared) unique.push_back(p);
+    while (unique.size() > 1 && (unique[0] - unique.back()).squaredNorm() <= toleranceSquared) unique.pop_back();
 
-    LiftedPoints lifted;
-    const LiftedHeight liftA(a, u, v, normal), liftB(b, u, v, normal);
     for (const Vec2& q : unique) {
-        double heightA = liftA(q), heightB = liftB(q);
+        const double heightA = a.height(q), heightB = b.height(q);
         if (heightA - heightB < minimumDepth) continue;
-        lifted.push_back({q.x() * u + q.y() * v + 0.5 * (heightA + heightB) * normal, heightA - heightB, q});
+        if (merge) {
+            bool known = false;
+            for (const LiftedPoint& other : out) known = known || (other.planar - q).squaredNorm() <= toleranceSquared;
+            if (known) continue;
+        }
+        out.push_back({q.x() * u + q.y() * v + 0.5 * (heightA + heightB) * normal, heightA - heightB, q});
     }
-    return lifted;
 }
 
 }  // namespace
 
 LiftedPoints intersectFeatures(const FeatureGeometry& a, const FeatureGeometry& b, const Vec3& normal,
                                double tolerance, double minimumDepth) {
-    if (a.capFaces.empty() && b.capFaces.empty()) return intersectSingle(a, b, normal, tolerance, minimumDepth);
+    Vec3 u, v;
+    planeBasis(normal, u, v);
+    LiftedPoints all;
+    if (a.capFaces.empty() && b.capFaces.empty()) {
+        intersectPieces(ProjectedPiece(a, u, v, normal), ProjectedPiece(b, u, v, normal), u, v, normal, tolerance,
+                        minimumDepth, false, all);
+        return all;
+    }
     // A cap bends at its inner edges, so its outline alone would miss the deepest point (an inner
     // vertex of a tessellated sphere) and lift points onto the wrong face where the cap's
     // projection is not convex. Face by face, every vertex of the arrangement is found — outline
     // corners, inner vertices, crossings of inner edges — and lifted onto the faces it lies on.
-    // Points shared by neighbouring faces are kept once.
-    LiftedPoints all;
-    auto pieces = [](const FeatureGeometry& feature) {
-        return feature.capFaces.empty() ? std::make_pair(&feature, std::size_t{1})
-                                        : std::make_pair(feature.capFaces.data(), feature.capFaces.size());
+    // Points shared by neighbouring faces are kept once. Each face is projected once, and pairs
+    // whose projections' bounds do not meet are skipped.
+    auto project = [&](const FeatureGeometry& feature, std::vector<ProjectedPiece>& pieces) {
+        if (feature.capFaces.empty()) {
+            pieces.emplace_back(feature, u, v, normal);
+            return;
+        }
+        pieces.reserve(feature.capFaces.size());
+        for (const FeatureGeometry& face : feature.capFaces) pieces.emplace_back(face, u, v, normal);
     };
-    const auto [piecesA, countA] = pieces(a);
-    const auto [piecesB, countB] = pieces(b);
-    for (std::size_t i = 0; i < countA; ++i)
-        for (std::size_t j = 0; j < countB; ++j)
-            for (const LiftedPoint& point : intersectSingle(piecesA[i], piecesB[j], normal, tolerance, minimumDepth)) {
-                bool known = false;
-                for (const LiftedPoint& other : all) known = known || (other.planar - point.planar).norm() <= tolerance;
-                if (!known) all.push_back(point);
-            }
+    std::vector<ProjectedPiece> piecesA, piecesB;
+    project(a, piecesA);
+    project(b, piecesB);
+    for (const ProjectedPiece& pieceA : piecesA)
+        for (const ProjectedPiece& pieceB : piecesB)
+            if (pieceA.boundsMeet(pieceB, tolerance))
+                intersectPieces(pieceA, pieceB, u, v, normal, tolerance, minimumDepth, true, all);
     return all;
 }
 

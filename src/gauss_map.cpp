@@ -4,8 +4,7 @@
 
 namespace gdc::detail {
 
-Feature selectFeature(const Polytope& polytope, const Vec3& direction, const AngularTolerance& tolerance,
-                      int bruteForceLimit) {
+Feature selectFeature(const Polytope& polytope, const Vec3& direction, int support, const AngularTolerance& tolerance) {
     // The region containing `direction` belongs to the support vertex, so the candidate faces and
     // edges are those around it (for tolerances below the polytope's smallest dihedral turn, which
     // is what the tolerance is for). When `direction` lies on (or within the tolerance of) an
@@ -13,14 +12,17 @@ Feature selectFeature(const Polytope& polytope, const Vec3& direction, const Ang
     // end supports as well and rounding decides which one supportVertex() returns; its faces and
     // edges are candidates too, so that the choice does not depend on that rounding (it made
     // collide(A, B) and collide(B, A) pick a face in one and an edge in the other).
-    const int vertex = polytope.supportVertex(direction, bruteForceLimit);
+    const int vertex = support;
     SmallVector<int, 8> around;
     around.push_back(vertex);
     const Vec3& apex = polytope.vertices()[vertex];
     for (int k = polytope.neighborOffsets()[vertex]; k < polytope.neighborOffsets()[vertex + 1]; ++k) {
         const int neighbour = polytope.neighbors()[k];
+        // direction·edge ≤ sin(tolerance)·|edge|, squared to spare the root (the left side is
+        // never negative: the apex supports).
         const Vec3 edge = apex - polytope.vertices()[neighbour];
-        if (direction.dot(edge) <= tolerance.sine * edge.norm()) around.push_back(neighbour);
+        const double along = direction.dot(edge);
+        if (along <= 0 || along * along <= tolerance.sine * tolerance.sine * edge.squaredNorm()) around.push_back(neighbour);
     }
 
     Feature best{FeatureType::Vertex, vertex};
@@ -58,13 +60,16 @@ void faceCap(const Polytope& polytope, int face, const Vec3& direction, const An
              SmallVector<int, 8>& faces) {
     faces.clear();
     faces.push_back(face);
-    // A box's other faces are perpendicular or opposite to this one; when it lies within the
-    // tolerance of `direction` they are at least 90° − tolerance away from it, outside the
-    // tolerance whenever that is below 45° (the bound used, ~41°, leaves a wide margin for
-    // rounding). The cap is then the face alone, found without the search.
-    constexpr double kCosineOf41Degrees = 0.75;
-    if (polytope.isBox() && tolerance.cosine > kCosineOf41Degrees &&
-        polytope.faces()[face].normal.dot(direction) >= tolerance.cosine)
+    // A face within the tolerance of `direction` whose nearest neighbour on the Gauss map is more
+    // than twice the tolerance away has no neighbour within it (angle(neighbour, direction) ≥
+    // angle(neighbour, face) − angle(face, direction) > 2·tolerance − tolerance): the cap is the
+    // face alone, found without the search (every face of a box, most faces of a coarse hull).
+    // cos(2θ) = 2·cos²θ − 1; the small slack keeps rounding on the side of searching.
+    constexpr double kCosineSlack = 1e-9;
+    const Polytope::Face& selected = polytope.faces()[face];
+    const double twiceToleranceCosine = 2 * tolerance.cosine * tolerance.cosine - 1;
+    if (tolerance.cosine >= 0 && selected.normal.dot(direction) >= tolerance.cosine &&
+        selected.nearestNeighbourCosine < twiceToleranceCosine - kCosineSlack)
         return;
     auto contains = [&](int f) {
         for (int g : faces)

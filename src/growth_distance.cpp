@@ -2,6 +2,7 @@
 
 #include "minkowski.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace gdc::detail {
@@ -93,8 +94,9 @@ SimplexClosest tetrahedronResult(const std::array<Vec3, 4>& p) {
 // intersection of the slabs |n·x| ≤ h_C(n) over its facet normals — the 3 + 3 face normals and the
 // 9 edge–edge cross products. The ray along w leaves C through the slab it crosses first: the exact
 // exit, without iterating (the same quantity the ray cast converges to).
-GrowthDistance boxGrowthDistance(const Vec3& halfA, const Vec3& halfB, const Mat3& rotationB, const Vec3& w,
+GrowthDistance boxGrowthDistance(const Vec3& halfA, const Vec3& halfB, const Mat3& rotationB, const Vec3& centreOffset,
                                  double separation) {
+    const Vec3 w = centreOffset / separation;
     auto supportValue = [&](const Vec3& n) {
         return halfA.dot(n.cwiseAbs()) + halfB.dot((rotationB.transpose() * n).cwiseAbs());
     };
@@ -117,8 +119,16 @@ GrowthDistance boxGrowthDistance(const Vec3& halfA, const Vec3& halfB, const Mat
             tiedNormals += outward;
         }
     };
-    for (int i = 0; i < 3; ++i) consider(Vec3::Unit(i));
-    for (int j = 0; j < 3; ++j) consider(rotationB.col(j));
+    // Along a face axis n the boxes overlap by h_C(n) − |n·(p_B − p_A)| in the nearer direction
+    // and by more in the other: the least of these over the six face axes bounds every face
+    // normal's overlap from below.
+    double faceOverlap = INFINITY;
+    auto considerFace = [&](const Vec3& n) {
+        faceOverlap = std::min(faceOverlap, supportValue(n) - std::abs(n.dot(centreOffset)));
+        consider(n);
+    };
+    for (int i = 0; i < 3; ++i) considerFace(Vec3::Unit(i));
+    for (int j = 0; j < 3; ++j) considerFace(rotationB.col(j));
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) {
             Vec3 n = Vec3::Unit(i).cross(rotationB.col(j));
@@ -128,6 +138,7 @@ GrowthDistance boxGrowthDistance(const Vec3& halfA, const Vec3& halfB, const Mat
     result.valid = std::isfinite(exitDistance) && exitDistance > 0 && tiedNormals.norm() > 1e-6;
     result.normal = tiedNormals.normalized();
     result.growth = separation / exitDistance;
+    result.faceOverlapLowerBound = faceOverlap;
     return result;
 }
 
@@ -181,7 +192,7 @@ GrowthDistance growthDistance(const Polytope& a, const Polytope& b, const Pose& 
     // C = (A − p_A) − (B − p_B) contains the origin; its exit point along w is the growth touch.
     const Vec3 w = centreOffset / separation;
     if (a.isBox() && b.isBox() && !needWitnesses)
-        return boxGrowthDistance(a.boxHalfExtents(), b.boxHalfExtents(), bInA.rotation, w, separation);
+        return boxGrowthDistance(a.boxHalfExtents(), b.boxHalfExtents(), bInA.rotation, centreOffset, separation);
     auto support = [&](const Vec3& direction) { return difference.centred(direction); };
     double exitDistance = 0;  // h
     RayCastResult cast = castExitAlong(support, w, size, settings, exitDistance);

@@ -16,6 +16,7 @@
 #include <gdcontact/settings.hpp>
 
 #include <array>
+#include <cmath>
 
 namespace gdc::detail {
 
@@ -116,6 +117,10 @@ struct GrowthDistance {
     Vec3 witnessA = Vec3::Zero();  // points of A and B whose difference is the exit point (on the
     Vec3 witnessB = Vec3::Zero();  // centre line, inside A ∩ B when overlapping)
     int iterations = 0;
+    /// A lower bound of the pair's overlap along every face normal of A and of B, either sign
+    /// (−∞ when unknown). The box fast path has it for free: it lets collide() skip the overhang
+    /// check when no face can need much less translation than the growth-distance normal.
+    double faceOverlapLowerBound = -INFINITY;
 };
 
 /// By the GJK ray cast (any polytopes), or in closed form when both are boxes unless

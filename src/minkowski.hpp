@@ -18,9 +18,17 @@ struct MinkowskiDifference {
         : a(a_), b(b_), bInA(bInA_), bruteForceLimit(limit), centreA(a_.centroid()),
           centreB(bInA_.apply(b_.centroid())) {}
 
-    int supportA(const Vec3& direction) const { return a.supportVertex(direction, bruteForceLimit); }
+    // The queries of one contact query ask for nearby directions (GJK's converging v, faces
+    // around the normal), so each support search of a large hull starts its climb at the
+    // previous answer. A local object per query: no state is shared between queries.
+    mutable int lastSupportA = -1;
+    mutable int lastSupportB = -1;
+
+    int supportA(const Vec3& direction) const {
+        return lastSupportA = a.supportVertex(direction, bruteForceLimit, lastSupportA);
+    }
     int supportB(const Vec3& direction) const {
-        return b.supportVertex(bInA.rotation.transpose() * direction, bruteForceLimit);
+        return lastSupportB = b.supportVertex(bInA.rotation.transpose() * direction, bruteForceLimit, lastSupportB);
     }
     Vec3 vertexB(int index) const { return bInA.apply(b.vertices()[index]); }
 

@@ -280,6 +280,17 @@ void Polytope::buildTopology(double size) {
         neighborOffsets_.push_back(static_cast<int>(neighbors_.size()));
         vertexFaceOffsets_.push_back(static_cast<int>(vertexFaces_.size()));
     }
+    for (Face& face : faces_) {
+        face.nearestNeighbourCosine = -1;
+        for (int i = 0; i < face.count; ++i) {
+            const int v = faceVertices_[face.first + i];
+            for (int k = vertexFaceOffsets_[v]; k < vertexFaceOffsets_[v + 1]; ++k) {
+                const Face& other = faces_[vertexFaces_[k]];
+                if (&other != &face)
+                    face.nearestNeighbourCosine = std::max(face.nearestNeighbourCosine, face.normal.dot(other.normal));
+            }
+        }
+    }
     radius_ = 0;
     for (const Vec3& v : vertices_) radius_ = std::max(radius_, (v - centroid_).norm());
 
@@ -312,7 +323,7 @@ Polytope Polytope::box(const Vec3& halfExtents) {
     return box;
 }
 
-int Polytope::supportVertex(const Vec3& direction, int bruteForceLimit) const {
+int Polytope::supportVertex(const Vec3& direction, int bruteForceLimit, int start) const {
     if (isBox_) return (direction.x() > 0 ? 1 : 0) | (direction.y() > 0 ? 2 : 0) | (direction.z() > 0 ? 4 : 0);
     const int count = static_cast<int>(vertices_.size());
     int best = 0;
@@ -327,10 +338,16 @@ int Polytope::supportVertex(const Vec3& direction, int bruteForceLimit) const {
     // Hill climbing: on a convex polytope a vertex with no strictly better neighbour is a global
     // maximum (the maximisers form a face, and any other vertex has an ascending edge). It starts
     // from the best of a few precomputed seeds (the supports of 26 directions), so a climb
-    // crosses at most a small cap of the hull instead of half of it.
-    for (int seed : supportSeeds_) {
-        double value = vertices_[seed].dot(direction);
-        if (value > bestValue) bestValue = value, best = seed;
+    // crosses at most a small cap of the hull instead of half of it — unless the caller knows a
+    // better start (the support of the previous, nearby direction of an iteration).
+    if (start >= 0 && start < count) {
+        best = start;
+        bestValue = vertices_[start].dot(direction);
+    } else {
+        for (int seed : supportSeeds_) {
+            double value = vertices_[seed].dot(direction);
+            if (value > bestValue) bestValue = value, best = seed;
+        }
     }
     for (bool improved = true; improved;) {
         improved = false;

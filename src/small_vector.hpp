@@ -43,6 +43,8 @@ public:
         else if (size_ > InlineCapacity + 1) spill_.pop_back();
         --size_;
     }
+    T* begin() { return data(); }
+    T* end() { return data() + size_; }
     const T* begin() const { return data(); }
     const T* end() const { return data() + size_; }
 

@@ -19,6 +19,9 @@ public:
         double offset;
         int first;
         int count;
+        /// The largest cosine between this face's normal and that of another face sharing a
+        /// vertex with it: how close its nearest neighbour on the Gauss map is (bounds caps).
+        double nearestNeighbourCosine = -1;
     };
     /// An edge between vertices `tail` and `head`. On the Gauss map it is the arc between the
     /// normals of its two faces; `leftFace` has the edge tail→head in its CCW order.
@@ -67,8 +70,10 @@ public:
     const Vec3& boxHalfExtents() const { return boxHalfExtents_; }
 
     /// Index of a vertex maximising direction·vertex (brute force up to `bruteForceLimit`
-    /// vertices, hill climbing over adjacency above it).
-    int supportVertex(const Vec3& direction, int bruteForceLimit = 32) const;
+    /// vertices, hill climbing over adjacency above it). `start`, when a vertex index, is where the
+    /// climb begins — the support of a nearby direction makes it a few steps (warm start);
+    /// otherwise it begins at the best of fixed seeds.
+    int supportVertex(const Vec3& direction, int bruteForceLimit = 32, int start = -1) const;
 
 private:
     Polytope() = default;
