@@ -254,7 +254,7 @@ Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const 
         return manifold;
 
     // Stage 1: contact normal from the growth distance.
-    const GrowthDistance growth = growthDistance(a, b, bInA, settings, /*needWitnesses=*/false);
+    const GrowthDistance growth = growthDistance(pair, settings, /*needWitnesses=*/false);
     Vec3 normal = growth.valid ? growth.normal : minimumOverlapFaceNormal(pair);
     // The pair's overlap along `normal`, kept in step with it (several steps below need it).
     double normalOverlap = pair.overlapAlong(normal);
@@ -302,7 +302,7 @@ Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const 
     double deepest = -INFINITY;
     for (const LiftedPoint& point : kept) deepest = std::max(deepest, point.depth);
     if (deepest < normalOverlap - tolerance) {
-        const SeparationAlong separation = separationAlong(a, b, bInA, normal, settings);
+        const SeparationAlong separation = separationAlong(pair, normal, settings);
         const double slack = (std::isfinite(deepest) ? kDepthSlack * std::abs(deepest) : 0.0) + tolerance;
         if (kept.empty() && separation.valid && separation.distance < -settings.margin - tolerance)
             return Manifold{};  // apart along n by more than the margin

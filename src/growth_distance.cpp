@@ -182,8 +182,14 @@ void castWitnesses(const RayCastResult& cast, const MinkowskiDifference& differe
 
 GrowthDistance growthDistance(const Polytope& a, const Polytope& b, const Pose& bInA, const Settings& settings,
                               bool needWitnesses) {
+    return growthDistance(MinkowskiDifference(a, b, bInA, settings.bruteForceSupportLimit), settings, needWitnesses);
+}
+
+GrowthDistance growthDistance(const MinkowskiDifference& difference, const Settings& settings, bool needWitnesses) {
     GrowthDistance result;
-    const MinkowskiDifference difference(a, b, bInA, settings.bruteForceSupportLimit);
+    const Polytope& a = difference.a;
+    const Polytope& b = difference.b;
+    const Pose& bInA = difference.bInA;
     const Vec3 centreOffset = difference.centreB - difference.centreA;  // p_B − p_A
     const double size = a.radius() + b.radius();
     const double separation = centreOffset.norm();
@@ -209,17 +215,21 @@ GrowthDistance growthDistance(const Polytope& a, const Polytope& b, const Pose& 
 
 SeparationAlong separationAlong(const Polytope& a, const Polytope& b, const Pose& bInA, const Vec3& normal,
                                 const Settings& settings) {
+    return separationAlong(MinkowskiDifference(a, b, bInA, settings.bruteForceSupportLimit), normal, settings);
+}
+
+SeparationAlong separationAlong(const MinkowskiDifference& difference, const Vec3& normal, const Settings& settings) {
     // A − B contains the origin when the pair overlaps; B moved by t·normal still overlaps A while
     // t·normal ∈ A − B, so the separating translation is where that ray leaves A − B. Cast
     // back from beyond A − B's support plane (castExitAlong), as for the growth distance.
     SeparationAlong result;
-    const MinkowskiDifference difference(a, b, bInA, settings.bruteForceSupportLimit);
+    const Polytope& a = difference.a;
     auto support = [&](const Vec3& direction) {
         const int ia = difference.supportA(direction), ib = difference.supportB(-direction);
         return SupportPoint{a.vertices()[ia] - difference.vertexB(ib), ia, ib};
     };
     double distance = 0;
-    RayCastResult cast = castExitAlong(support, normal, a.radius() + b.radius(), settings, distance);
+    RayCastResult cast = castExitAlong(support, normal, a.radius() + difference.b.radius(), settings, distance);
     if (!cast.hit || cast.simplexCount == 0) return result;
     result.valid = true;
     result.distance = distance;

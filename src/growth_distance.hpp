@@ -123,10 +123,15 @@ struct GrowthDistance {
     double faceOverlapLowerBound = -INFINITY;
 };
 
+struct MinkowskiDifference;
+
 /// By the GJK ray cast (any polytopes), or in closed form when both are boxes unless
 /// `needWitnesses`.
 GrowthDistance growthDistance(const Polytope& a, const Polytope& b, const Pose& bInA, const Settings& settings,
                               bool needWitnesses = true);
+/// The same for a pair the caller already holds: its support searches continue from the pair's
+/// earlier ones (warm start), as do the pair's later searches from these.
+GrowthDistance growthDistance(const MinkowskiDifference& pair, const Settings& settings, bool needWitnesses);
 
 /// How far B must move along the unit `normal` (A's frame, from A towards B) to stop overlapping
 /// A: the exit distance t of the ray from the origin along `normal` through A − B, with points of
@@ -139,5 +144,6 @@ struct SeparationAlong {
 };
 SeparationAlong separationAlong(const Polytope& a, const Polytope& b, const Pose& bInA, const Vec3& normal,
                                 const Settings& settings);
+SeparationAlong separationAlong(const MinkowskiDifference& pair, const Vec3& normal, const Settings& settings);
 
 }  // namespace gdc::detail
