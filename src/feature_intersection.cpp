@@ -98,46 +98,39 @@ Polygon2 intersect2d(const Polygon2& a, const Polygon2& b, double tolerance) {
     return out;
 }
 
-// Height along n of the point of a feature that projects to a planar point. What does not depend
-// on the point (a face's n-component, an edge's projected ends) is computed once per feature, not
-// once per intersection point; the arithmetic per point is unchanged.
+// Height along n of the point of a feature that projects to a planar point q. For every feature
+// it is affine in q — a face's plane, an edge's line, a vertex's constant — so it is set up once
+// per feature as height(q) = constant + gradient·q, and each point costs two multiply-adds.
 class LiftedHeight {
 public:
-    LiftedHeight(const FeatureGeometry& feature, const Vec3& u, const Vec3& v, const Vec3& n)
-        : feature_(feature), u_(u), v_(v), n_(n) {
+    LiftedHeight(const FeatureGeometry& feature, const Vec3& u, const Vec3& v, const Vec3& n) {
         if (feature.type == FeatureType::Face) {
-            normalAlongN_ = feature.planeNormal.dot(n);
+            // planeNormal·(q.x·u + q.y·v + h·n) = planeOffset, solved for h.
+            const double normalAlongN = feature.planeNormal.dot(n);
+            constant_ = feature.planeOffset / normalAlongN;
+            gradient_ = -Vec2(feature.planeNormal.dot(u), feature.planeNormal.dot(v)) / normalAlongN;
         } else if (feature.type == FeatureType::Edge) {
+            // The point of the edge p0 + t·(p1 − p0) whose projection is nearest q (t affine in q).
             const Vec3 &p0 = feature.points[0], &p1 = feature.points[1];
-            end0_ = Vec2(p0.dot(u), p0.dot(v));
-            along_ = Vec2(p1.dot(u), p1.dot(v)) - end0_;
-            alongSquared_ = along_.squaredNorm();
+            const Vec2 end0(p0.dot(u), p0.dot(v));
+            const Vec2 along = Vec2(p1.dot(u), p1.dot(v)) - end0;
+            const double alongSquared = along.squaredNorm();
+            const double rise = (p1 - p0).dot(n);
+            constant_ = p0.dot(n);
+            if (alongSquared > 0) {
+                gradient_ = along * (rise / alongSquared);
+                constant_ -= gradient_.dot(end0);
+            }
         } else {
-            vertexHeight_ = feature.points[0].dot(n);
+            constant_ = feature.points[0].dot(n);
         }
     }
 
-    double operator()(const Vec2& q) const {
-        switch (feature_.type) {
-            case FeatureType::Face: {
-                Vec3 base = q.x() * u_ + q.y() * v_;
-                return (feature_.planeOffset - feature_.planeNormal.dot(base)) / normalAlongN_;
-            }
-            case FeatureType::Edge: {
-                const Vec3 &p0 = feature_.points[0], &p1 = feature_.points[1];
-                double t = alongSquared_ > 0 ? (q - end0_).dot(along_) / alongSquared_ : 0.0;
-                return (p0 + t * (p1 - p0)).dot(n_);
-            }
-            case FeatureType::Vertex:
-            default: return vertexHeight_;
-        }
-    }
+    double operator()(const Vec2& q) const { return constant_ + gradient_.dot(q); }
 
 private:
-    const FeatureGeometry& feature_;
-    const Vec3 &u_, &v_, &n_;
-    double normalAlongN_ = 0, alongSquared_ = 0, vertexHeight_ = 0;
-    Vec2 end0_ = Vec2::Zero(), along_ = Vec2::Zero();
+    double constant_ = 0;
+    Vec2 gradient_ = Vec2::Zero();
 };
 
 }  // namespace

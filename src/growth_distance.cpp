@@ -97,19 +97,20 @@ SimplexClosest tetrahedronResult(const std::array<Vec3, 4>& p) {
 GrowthDistance boxGrowthDistance(const Vec3& halfA, const Vec3& halfB, const Mat3& rotationB, const Vec3& centreOffset,
                                  double separation) {
     const Vec3 w = centreOffset / separation;
-    auto supportValue = [&](const Vec3& n) {
-        return halfA.dot(n.cwiseAbs()) + halfB.dot((rotationB.transpose() * n).cwiseAbs());
-    };
+    // h_C(n) = halfA·|n| + halfB·|Rᵀn|. Rᵀ of each candidate axis is known without the product:
+    // Rᵀe_i is row i of R, Rᵀ(column j) = e_j, and Rᵀ(e_i × column j) = (row i) × e_j (up to a
+    // sign, which the absolute value drops).
+    const Mat3 absoluteR = rotationB.cwiseAbs();
     GrowthDistance result;
     // A ray through an edge or corner of C leaves several slabs at once; any normal of that cone
     // is valid, and the sum of the tied facet normals is the one in its middle (what the ray cast
     // converges to for a symmetric pose, and the one that finds edge–edge contacts).
     double exitDistance = INFINITY;
     Vec3 tiedNormals = Vec3::Zero();
-    auto consider = [&](const Vec3& n) {
+    auto consider = [&](const Vec3& n, double supportValue) {
         double along = n.dot(w);
         if (std::abs(along) < 1e-12) return;
-        double distance = supportValue(n) / std::abs(along);
+        double distance = supportValue / std::abs(along);
         Vec3 outward = along > 0 ? n : -n;
         if (distance < exitDistance * (1 - 1e-12)) {
             if (distance > exitDistance * (1 - 2e-12)) tiedNormals += outward;
@@ -123,17 +124,19 @@ GrowthDistance boxGrowthDistance(const Vec3& halfA, const Vec3& halfB, const Mat
     // and by more in the other: the least of these over the six face axes bounds every face
     // normal's overlap from below.
     double faceOverlap = INFINITY;
-    auto considerFace = [&](const Vec3& n) {
-        faceOverlap = std::min(faceOverlap, supportValue(n) - std::abs(n.dot(centreOffset)));
-        consider(n);
+    auto considerFace = [&](const Vec3& n, double supportValue) {
+        faceOverlap = std::min(faceOverlap, supportValue - std::abs(n.dot(centreOffset)));
+        consider(n, supportValue);
     };
-    for (int i = 0; i < 3; ++i) considerFace(Vec3::Unit(i));
-    for (int j = 0; j < 3; ++j) considerFace(rotationB.col(j));
+    for (int i = 0; i < 3; ++i) considerFace(Vec3::Unit(i), halfA[i] + halfB.dot(absoluteR.row(i).transpose()));
+    for (int j = 0; j < 3; ++j) considerFace(rotationB.col(j), halfA.dot(absoluteR.col(j)) + halfB[j]);
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) {
-            Vec3 n = Vec3::Unit(i).cross(rotationB.col(j));
-            double length = n.norm();
-            if (length > 1e-9) consider(n / length);  // parallel edges: covered by the face normals
+            const Vec3 n = Vec3::Unit(i).cross(rotationB.col(j));
+            const double length = n.norm();
+            if (!(length > 1e-9)) continue;  // parallel edges: covered by the face normals
+            const Vec3 inB = rotationB.row(i).transpose().cross(Vec3::Unit(j));
+            consider(n / length, (halfA.dot(n.cwiseAbs()) + halfB.dot(inB.cwiseAbs())) / length);
         }
     result.valid = std::isfinite(exitDistance) && exitDistance > 0 && tiedNormals.norm() > 1e-6;
     result.normal = tiedNormals.normalized();
