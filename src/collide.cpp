@@ -284,7 +284,7 @@ Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const 
     refineNormal(normal, normalOverlap, featureA, featureB, pair);
 
     // Stage 3: intersection in the contact plane, each point with its own depth.
-    LiftedPoints kept = intersectFeatures(featureA, featureB, normal, tolerance, -settings.margin - tolerance);
+    LiftedPoints kept = intersectFeatures(featureA, featureB, normal, tolerance, -settings.margin);
     // The deepest contact must carry the whole penetration along n — the distance B must move
     // along n to clear A, the exit of the ray along n through A − B (ODE's contract: moving by
     // 0.96·depth still touches, 1.04·depth separates). The intersection misses it when the

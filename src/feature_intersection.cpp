@@ -175,15 +175,36 @@ void intersectPieces(const ProjectedPiece& a, const ProjectedPiece& b, const Vec
         if (unique.empty() || (p - unique.back()).squaredNorm() > toleranceSquared) unique.push_back(p);
     while (unique.size() > 1 && (unique[0] - unique.back()).squaredNorm() <= toleranceSquared) unique.pop_back();
 
-    for (const Vec2& q : unique) {
-        const double heightA = a.height(q), heightB = b.height(q);
-        if (heightA - heightB < minimumDepth) continue;
+    auto emit = [&](const Vec2& q, double heightA, double heightB) {
         if (merge) {
             bool known = false;
             for (const LiftedPoint& other : out) known = known || (other.planar - q).squaredNorm() <= toleranceSquared;
-            if (known) continue;
+            if (known) return;
         }
         out.push_back({q.x() * u + q.y() * v + 0.5 * (heightA + heightB) * normal, heightA - heightB, q});
+    };
+    // The depth is affine along every edge of the region (both features are flat there), so where
+    // an edge runs from contact into a clear gap, the contact region ends where the depth crosses
+    // `minimumDepth`, and that point is a contact too: dropping the floating vertices without it
+    // shrank a slightly tilted face's support polygon to its deepest corners (a cube resting 1° off
+    // flat kept about half of its true contact area). An edge whose far end floats by less than
+    // the tolerance adds nothing: its end is kept, and a crossing there would be rounding noise.
+    const std::size_t count = unique.size();
+    SmallVector<double, 16> heightsA, heightsB;
+    for (const Vec2& q : unique) heightsA.push_back(a.height(q)), heightsB.push_back(b.height(q));
+    const std::size_t edges = count >= 3 ? count : count - 1;  // a polygon closes; a segment has one edge
+    const double keepDepth = minimumDepth - tolerance;
+    for (std::size_t i = 0; i < count; ++i) {
+        const double depth = heightsA[i] - heightsB[i];
+        if (depth >= keepDepth) emit(unique[i], heightsA[i], heightsB[i]);
+        if (i >= edges) continue;
+        const std::size_t next = i + 1 == count ? 0 : i + 1;
+        const double nextDepth = heightsA[next] - heightsB[next];
+        const bool leaves = depth >= minimumDepth && nextDepth < keepDepth;
+        const bool enters = depth < keepDepth && nextDepth >= minimumDepth;
+        if (!leaves && !enters) continue;
+        const Vec2 crossing = unique[i] + (depth - minimumDepth) / (depth - nextDepth) * (unique[next] - unique[i]);
+        emit(crossing, a.height(crossing), b.height(crossing));
     }
 }
 

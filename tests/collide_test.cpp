@@ -56,6 +56,41 @@ TEST_CASE("box on box at random yaw and offset: the analytic intersection polygo
     CHECK(checked > 300);
 }
 
+TEST_CASE("a face tilted 0.2°–2° onto a face: the points span the analytic contact region up to its zero-depth line") {
+    // Cube B tilted by θ about x over cube A, its lower bottom edge sunk by d: B's bottom face is
+    // below A's top (z = 0.5) for t ∈ [−0.5, t0] along its tilted side, t0 = d / sin θ − 0.5, so the
+    // contact region is the rectangle x ∈ [±0.5], y ∈ [y(−0.5), y(t0)], y(t) = 0.5·sin θ + t·cos θ,
+    // with depth d along its low side and 0 along its high side. The whole scene is placed in a
+    // generic world frame.
+    const Pose world = makePose(Vec3(3.0, -2.0, 1.5), rotationAbout(Vec3(1, 2, 3), 0.7));
+    for (double degrees : {0.2, 0.5, 1.0, 2.0}) {
+        const double theta = degrees * M_PI / 180, sink = 0.3 * std::sin(theta);
+        const double height = 0.5 + 0.5 * std::cos(theta) + 0.5 * std::sin(theta) - sink;
+        const Pose top = makePose(Vec3(0, 0, height), rotationAbout(Vec3::UnitX(), theta));
+        const Pose poseB{world.rotation * top.rotation, world.apply(top.position)};
+        const Manifold m = collide(unitCube(), world, unitCube(), poseB, allContacts());
+        INFO("tilt " << degrees << "°");
+        REQUIRE(m.pointCount == 4);
+        CHECK((m.normal - world.rotation * Vec3::UnitZ()).norm() < 1e-12);
+        const double edgeT = sink / std::sin(theta) - 0.5;
+        auto y = [&](double t) { return 0.5 * std::sin(theta) + t * std::cos(theta); };
+        std::vector<Vec3> expected;
+        for (double x : {-0.5, 0.5}) {
+            expected.push_back(world.apply(Vec3(x, y(-0.5), 0.5 - sink / 2)));
+            expected.push_back(world.apply(Vec3(x, y(edgeT), 0.5)));
+        }
+        CHECK(sameSets(positions(m), expected, 1e-9));
+        int deep = 0, touching = 0;
+        for (int i = 0; i < m.pointCount; ++i) {
+            deep += std::abs(m.points[i].depth - sink) < 1e-12;
+            touching += std::abs(m.points[i].depth) < 1e-12;
+        }
+        CHECK(deep == 2);
+        CHECK(touching == 2);
+        requireOnSurfaces(m, unitCube(), world, unitCube(), poseB, 1e-9);
+    }
+}
+
 TEST_CASE("edge on face: a cube rolled 45° about x rests its edge on a cube, clipped to the face") {
     const double sink = 0.003, shift = 0.3;
     Pose top = makePose(Vec3(shift, 0, 0.5 + std::sqrt(0.5) - sink), rotationAbout(Vec3::UnitX(), M_PI / 4));
