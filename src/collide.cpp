@@ -355,8 +355,8 @@ Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b, const
     const int* indices = nullptr;
     int count = featureVertices(a, manifold.featureA, &indices, storage);
     SmallVector<int, 32> vertices;  // a face's whole cap of near-coplanar faces rests on the plane
+    SmallVector<int, 8> cap;
     if (manifold.featureA.type == FeatureType::Face) {
-        SmallVector<int, 8> cap;
         faceCap(a, manifold.featureA.index, normal, angularTolerance, cap);
         if (cap.size() > 1) {
             capVertices(a, cap, vertices);
@@ -365,10 +365,34 @@ Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b, const
         }
     }
     LiftedPoints kept;
+    const double keepDepth = -settings.margin - tolerance;
+    auto depthOf = [&](const Vec3& x) { return offset - m.dot(x); };
+    auto add = [&](const Vec3& x, double depth) { kept.push_back({x + 0.5 * depth * m, depth, Vec2::Zero()}); };
     for (int i = 0; i < count; ++i) {
         const Vec3& x = a.vertices()[indices[i]];
-        double depth = offset - m.dot(x);
-        if (depth >= -settings.margin - tolerance) kept.push_back({x + 0.5 * depth * m, depth, Vec2::Zero()});
+        const double depth = depthOf(x);
+        if (depth >= keepDepth) add(x, depth);
+    }
+    // Where an edge of the face (of each face of its cap) runs from contact into a clear gap, the
+    // point where it crosses the contact depth is a contact too: the points then span the region
+    // in contact, not just the deepest corners of a slightly tilted face (as in the intersection
+    // of two features, feature_intersection.cpp). Cap faces share edges: each crossing once.
+    for (int face : cap) {
+        const Polytope::Face& loop = a.faces()[face];
+        const int* corners = a.faceVertices().data() + loop.first;
+        for (int i = 0; i < loop.count; ++i) {
+            const Vec3& x = a.vertices()[corners[i]];
+            const Vec3& y = a.vertices()[corners[i + 1 == loop.count ? 0 : i + 1]];
+            const double depthX = depthOf(x), depthY = depthOf(y);
+            const bool leaves = depthX >= -settings.margin && depthY < keepDepth;
+            const bool enters = depthX < keepDepth && depthY >= -settings.margin;
+            if (!leaves && !enters) continue;
+            const Vec3 crossing = x + (depthX + settings.margin) / (depthX - depthY) * (y - x);
+            bool known = false;
+            for (const LiftedPoint& point : kept)
+                known = known || (point.position - 0.5 * point.depth * m - crossing).squaredNorm() <= tolerance * tolerance;
+            if (!known) add(crossing, depthOf(crossing));
+        }
     }
     if (kept.empty()) {  // a tilted face whose selected vertices all float: keep the deepest one
         const Vec3& x = a.vertices()[deepest];

@@ -261,6 +261,39 @@ TEST_CASE("a polytope on a half-space: a resting face gives its corners, a tilte
     CHECK(collide(unitCube(), makePose(Vec3(0, 0, 0.51)), ground).empty());
 }
 
+TEST_CASE("a box tilted 0.2°–2° on a half-space: its deepest edge and the zero-depth line across its face") {
+    // A unit cube tilted by θ about x, its lower bottom edge sunk by d below the plane z = 0: the
+    // face is below the plane for t ∈ [−0.5, t0] along its tilted side, t0 = d / sin θ − 0.5.
+    const Pose world = makePose(Vec3(-1.0, 4.0, 2.0), rotationAbout(Vec3(3, -1, 2), 1.1));
+    const Vec3 up = world.rotation * Vec3::UnitZ();
+    const HalfSpace ground{up, up.dot(world.position)};  // the plane z = 0 of the local frame
+    for (double degrees : {0.2, 0.5, 1.0, 2.0}) {
+        const double theta = degrees * M_PI / 180, sink = 0.3 * std::sin(theta);
+        const double height = 0.5 * std::cos(theta) + 0.5 * std::sin(theta) - sink;
+        const Pose local = makePose(Vec3(0, 0, height), rotationAbout(Vec3::UnitX(), theta));
+        const Pose pose{world.rotation * local.rotation, world.apply(local.position)};
+        const Manifold m = collide(unitCube(), pose, ground, allContacts());
+        INFO("tilt " << degrees << "°");
+        REQUIRE(m.pointCount == 4);
+        CHECK((m.normal + up).norm() < 1e-12);
+        const double edgeT = sink / std::sin(theta) - 0.5;
+        auto y = [&](double t) { return 0.5 * std::sin(theta) + t * std::cos(theta); };
+        std::vector<Vec3> expected;
+        for (double x : {-0.5, 0.5}) {
+            expected.push_back(world.apply(Vec3(x, y(-0.5), -sink / 2)));
+            expected.push_back(world.apply(Vec3(x, y(edgeT), 0)));
+        }
+        CHECK(sameSets(positions(m), expected, 1e-9));
+        int deep = 0, touching = 0;
+        for (int i = 0; i < m.pointCount; ++i) {
+            deep += std::abs(m.points[i].depth - sink) < 1e-12;
+            touching += std::abs(m.points[i].depth) < 1e-12;
+        }
+        CHECK(deep == 2);
+        CHECK(touching == 2);
+    }
+}
+
 TEST_CASE("bad input to collide is refused with a message") {
     Pose bad = makePose(Vec3(NAN, 0, 0));
     CHECK_THROWS_AS(collide(unitCube(), bad, unitCube(), Pose{}), InvalidInput);
