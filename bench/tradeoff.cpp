@@ -499,6 +499,9 @@ std::vector<Contender> settingsSweep(const TestSets& sets) {
         s.maxContacts = v;
         out.push_back(gdcontactWith(sets, s, "maxContacts", text(v)));
     }
+    gdc::Settings separatingAxis;  // the whole pipeline with the SAT's exact normal in stage 1
+    separatingAxis.normalMethod = gdc::NormalMethod::SeparatingAxis;
+    out.push_back(gdcontactWith(sets, separatingAxis, "normalMethod", "SeparatingAxis"));
     return out;
 }
 

@@ -7,6 +7,7 @@
 #include "growth_distance.hpp"
 #include "minkowski.hpp"
 #include "reduction.hpp"
+#include "separating_axis.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -253,11 +254,20 @@ Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const 
     if (centreDistance > 0 && pair.overlapAlong(centreOffset / centreDistance) < -settings.margin - tolerance)
         return manifold;
 
-    // Stage 1: contact normal from the growth distance.
-    const GrowthDistance growth = growthDistance(pair, settings, /*needWitnesses=*/false);
-    Vec3 normal = growth.valid ? growth.normal : minimumOverlapFaceNormal(pair);
+    // Stage 1: contact normal from the growth distance (or, to measure the trade, the SAT's).
+    const bool separatingAxis = settings.normalMethod == NormalMethod::SeparatingAxis;
+    GrowthDistance growth;
+    Vec3 normal;
     // The pair's overlap along `normal`, kept in step with it (several steps below need it).
-    double normalOverlap = pair.overlapAlong(normal);
+    double normalOverlap = 0;
+    if (separatingAxis) {
+        const SeparatingAxis axis = minimumOverlapAxis(pair);
+        normal = axis.normal, normalOverlap = axis.overlap;
+    } else {
+        growth = growthDistance(pair, settings, /*needWitnesses=*/false);
+        normal = growth.valid ? growth.normal : minimumOverlapFaceNormal(pair);
+        normalOverlap = pair.overlapAlong(normal);
+    }
     if (normalOverlap < -settings.margin - tolerance) return manifold;  // separated along n
 
     // Stage 2: one Gauss-map feature per body (B's searched in its own frame with −n).
@@ -269,7 +279,8 @@ Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const 
     };
     selectFeatures(normal);
     // Stage 1's check of the growth-distance normal against the faces around the two features
-    // (the overhang fix); the features are then those of the corrected normal.
+    // (the overhang fix); the features are then those of the corrected normal. The SAT's normal
+    // needs none: no face overlaps less.
     // It can only pick a face whose overlap is below half the normal's, so a lower bound of every
     // face's overlap (the box pair has one) above that settles it without the search.
     const bool noFaceClearlySmaller = growth.faceOverlapLowerBound >= kClearlySmallerOverlap * normalOverlap + tolerance;
@@ -281,7 +292,7 @@ Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const 
     const FeatureGeometry featureA = featureGeometry(a, manifold.featureA, Pose{}, normal, angularTolerance);
     const FeatureGeometry featureB = featureGeometry(b, manifold.featureB, bInA, bInA.rotation.transpose() * -normal,
                                                      angularTolerance);
-    refineNormal(normal, normalOverlap, featureA, featureB, pair);
+    if (!separatingAxis) refineNormal(normal, normalOverlap, featureA, featureB, pair);  // SAT's is exact already
 
     // Stage 3: intersection in the contact plane, each point with its own depth.
     LiftedPoints kept = intersectFeatures(featureA, featureB, normal, tolerance, -settings.margin);

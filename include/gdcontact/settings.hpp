@@ -7,6 +7,11 @@ namespace gdc {
 /// exist to measure the speed/accuracy trade against it.
 enum class NormalMethod {
     GrowthDistance,  ///< GJK ray cast on A − B along the line through the contraction points (paper)
+    /// The exact minimum-translation normal: a separating-axis test over the face normals of both
+    /// bodies and the edge pairs whose Gauss-map arcs cross. Exact for any pose (no overhang
+    /// check needed), but its cost grows with (edges of A) × (edges of B): fine for boxes and small
+    /// hulls, slow for large ones.
+    SeparatingAxis,
 };
 
 struct Settings {
