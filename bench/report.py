@@ -533,8 +533,9 @@ error median / p95 / max:
 
 ![pareto](images/bench_pareto.png)
 
-The core has only `NormalMethod::GrowthDistance`; MPR and SAT normals appear here as stage-1 alternatives, and as the
-normal sources of ODE's libccd collider and Bullet's two clipping paths in the table above.
+The core offers `NormalMethod::GrowthDistance` (the paper, default) and `NormalMethod::SeparatingAxis` (the exact SAT
+normal, with the same features and intersection: its row in the table above); MPR and GJK+EPA normals appear here as
+stage-1 alternatives, and as the normal sources of ODE's libccd collider and Bullet's two clipping paths above.
 
 ## Scene cost
 

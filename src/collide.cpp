@@ -160,8 +160,10 @@ FeatureGeometry featureGeometry(const Polytope& polytope, const Feature& feature
         FeatureGeometry geometry = faceGeometry(polytope, feature.index, toCommon);
         SmallVector<int, 8> cap;
         faceCap(polytope, feature.index, direction, angularTolerance, cap);
-        if (cap.size() > 1)
+        if (cap.size() > 1) {
+            geometry.capFaces.reserve(cap.size());
             for (int face : cap) geometry.capFaces.push_back(faceGeometry(polytope, face, toCommon));
+        }
         return geometry;
     }
     FeatureGeometry geometry;
