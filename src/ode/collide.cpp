@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <exception>
 #include <functional>
 #include <string>
@@ -13,13 +14,14 @@
 namespace gdc::ode {
 namespace {
 
-enum class Kind { Polytope, Plane };
-
+// One side of a pair. Built in place by readShape (no default-initialised pose to overwrite).
 struct Shape {
-    Kind kind = Kind::Polytope;
-    std::shared_ptr<const Polytope> polytope;  // Kind::Polytope, geom-local frame
-    Pose pose;                                  // Kind::Polytope
-    HalfSpace halfSpace;                        // Kind::Plane, world frame
+    // Geom-local frame; nullptr for a plane. Borrowed from the adapter's state (see state.hpp)
+    // for the duration of one collide call, so that no reference count is touched per pair.
+    const Polytope* polytope;
+    Pose pose;            // a polytope's world pose
+    HalfSpace halfSpace;  // a plane, world frame
+    bool isPlane() const { return polytope == nullptr; }
 };
 
 const char* className(int geomClass) {
@@ -44,37 +46,47 @@ std::shared_ptr<const Polytope> boxPolytopeOf(dGeomID box) {
     return detail::boxPolytope(0.5 * lengths[0], 0.5 * lengths[1], 0.5 * lengths[2]);
 }
 
+// poseOf without its checks, for geoms whose class is already known to be placeable.
+Pose readPose(dGeomID geom) {
+    const dReal* position = dGeomGetPosition(geom);
+    // A dMatrix3 is 3x4 row-major (the fourth column is padding).
+    using OdeRotation = Eigen::Map<const Eigen::Matrix<dReal, 3, 3, Eigen::RowMajor>, Eigen::Unaligned,
+                                   Eigen::OuterStride<4>>;
+    return Pose{OdeRotation(dGeomGetRotation(geom)).cast<double>(),
+                Vec3(position[0], position[1], position[2])};
+}
+
 // Misuse of the adapter is a programming error: ODE's error handler (which by default prints
 // the message and exits) is the loud way ODE itself reports those.
 [[noreturn]] void misuse(const std::string& what) {
     dError(d_ERR_UASSERT, "%s", ("gdcontact: " + what).c_str());
 }
 
-Shape readShape(dGeomID geom) {
-    Shape shape;
+Shape readShape(dGeomID geom, detail::ThreadCache& cache) {
     const int geomClass = dGeomGetClass(geom);
     switch (geomClass) {
-        case dBoxClass:
-            shape.polytope = boxPolytopeOf(geom);
-            shape.pose = poseOf(geom);
-            return shape;
-        case dConvexClass:
-            shape.polytope = detail::registeredConvex(geom);
-            if (!shape.polytope)
+        case dBoxClass: {
+            dVector3 lengths;
+            dGeomBoxGetLengths(geom, lengths);
+            return Shape{&detail::borrowedBoxPolytope(cache, 0.5 * lengths[0], 0.5 * lengths[1], 0.5 * lengths[2]),
+                         readPose(geom), HalfSpace{}};
+        }
+        case dConvexClass: {
+            const Polytope* hull = detail::borrowedConvex(cache, geom);
+            if (!hull)
                 misuse("a dConvex geom made with plain dCreateConvex reached gdc::ode::collide. ODE "
                        "0.16.2 gives no access to a dConvex's data, so gdcontact cannot collide it. "
                        "Create the geom with gdc::ode::createConvex(space, planes, planeCount, points, "
                        "pointCount, polygons) (the same arguments as dCreateConvex) or "
                        "gdc::ode::createConvex(space, points, pointCount) instead.");
-            shape.pose = poseOf(geom);
-            return shape;
+            return Shape{hull, readPose(geom), HalfSpace{}};
+        }
         case dPlaneClass: {
-            shape.kind = Kind::Plane;
             dVector4 parameters;  // a·x + b·y + c·z ≤ d is the solid; (a,b,c) points out of it
             dGeomPlaneGetParams(geom, parameters);
-            shape.halfSpace = HalfSpace{Vec3(parameters[0], parameters[1], parameters[2]).normalized(),
-                                        static_cast<double>(parameters[3])};
-            return shape;
+            return Shape{nullptr, Pose{},
+                         HalfSpace{detail::unitPlaneNormal(cache, parameters[0], parameters[1], parameters[2]),
+                                   static_cast<double>(parameters[3])}};
         }
         default:
             misuse(std::string("gdc::ode::collide handles box, convex (gdc::ode::createConvex) and plane "
@@ -93,9 +105,10 @@ int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int
         misuse("gdc::ode::collide: skip (" + std::to_string(skip) +
                ") is smaller than sizeof(dContactGeom)");
 
-    const Shape shape1 = readShape(o1);
-    const Shape shape2 = readShape(o2);
-    if (shape1.kind == Kind::Plane && shape2.kind == Kind::Plane)
+    detail::ThreadCache& cache = detail::threadCache();
+    const Shape shape1 = readShape(o1, cache);
+    const Shape shape2 = readShape(o2, cache);
+    if (shape1.isPlane() && shape2.isPlane())
         misuse("gdc::ode::collide: plane–plane is not a supported pair");
 
     // One fixed order per pair, so collide(a,b) and collide(b,a) make the same core call and
@@ -111,15 +124,20 @@ int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int
         if (p.z() != q.z()) return p.z() < q.z();
         return std::less<const void*>{}(static_cast<const void*>(geomX), static_cast<const void*>(geomY));
     };
-    const bool swapped = shape1.kind == Kind::Plane || (shape2.kind == Kind::Polytope && before(shape2, o2, shape1, o1));
+    const bool swapped = shape1.isPlane() || (!shape2.isPlane() && before(shape2, o2, shape1, o1));
     const Shape& a = swapped ? shape2 : shape1;
     const Shape& b = swapped ? shape1 : shape2;
 
-    Settings pairSettings = settings;
-    pairSettings.maxContacts = maxContacts;
-    const Manifold manifold =
-        b.kind == Kind::Plane ? gdc::collide(*a.polytope, a.pose, b.halfSpace, pairSettings)
-                              : gdc::collide(*a.polytope, a.pose, *b.polytope, b.pose, pairSettings);
+    const Manifold manifold = [&] {
+        auto collideWith = [&](const Settings& pairSettings) {
+            return b.isPlane() ? gdc::collide(*a.polytope, a.pose, b.halfSpace, pairSettings)
+                               : gdc::collide(*a.polytope, a.pose, *b.polytope, b.pose, pairSettings);
+        };
+        if (settings.maxContacts == maxContacts) return collideWith(settings);  // the common case: no copy
+        Settings pairSettings = settings;
+        pairSettings.maxContacts = maxContacts;
+        return collideWith(pairSettings);
+    }();
     if (manifold.empty()) return 0;
 
     // The core's normal points from A towards B; ODE's from o2 into o1.
@@ -134,37 +152,44 @@ int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int
     // ODE treats every contact as active and clamps a negative depth to zero, so a speculative
     // point (depth < 0, only with Settings::margin > 0) would hold the bodies apart by its gap.
     // Such points are not passed on; a rounding-level negative depth is reported as touching.
-    const double sizeOfPair = a.polytope->radius() + (b.kind == Kind::Plane ? 0.0 : b.polytope->radius());
+    const double sizeOfPair = a.polytope->radius() + (b.isPlane() ? 0.0 : b.polytope->radius());
     const double touchingTolerance = 1e-9 * sizeOfPair;
     // Deepest first, as ODE's own colliders list them. dWorldQuickStep sweeps the contact rows in
     // the order given; the core's order walks the contact polygon the same way round every step,
     // and under QuickStep that fixed order roughly doubled a 10-stack's drift (samples/ode_stack).
-    std::array<int, kMaxManifoldPoints> order;
+    // Kept points are inserted by depth as they are read (stable: equal depths keep the core's
+    // order); at most 16, so an insertion sort on a compact copy of the depths is the cheapest.
+    std::array<int, kMaxManifoldPoints> order;  // indices into manifold.points, deepest first
+    std::array<double, kMaxManifoldPoints> orderDepth;
     int kept = 0;
     for (int i = 0; i < manifold.pointCount; ++i) {
         const ContactPoint& point = manifold.points[i];
-        if (point.depth >= -touchingTolerance && point.position.allFinite()) order[kept++] = i;
-    }
-    for (int i = 1; i < kept; ++i)  // insertion sort: stable, no allocation, at most 16 points
-        for (int j = i; j > 0 && manifold.points[order[j]].depth > manifold.points[order[j - 1]].depth; --j)
-            std::swap(order[j], order[j - 1]);
-    int written = 0;
-    for (int k = 0; k < kept && written < maxContacts; ++k) {
-        const ContactPoint& point = manifold.points[order[k]];
-        dContactGeom* out = reinterpret_cast<dContactGeom*>(reinterpret_cast<char*>(contact) +
-                                                           static_cast<std::ptrdiff_t>(written) * skip);
-        for (int axis = 0; axis < 3; ++axis) {
-            out->pos[axis] = static_cast<dReal>(point.position[axis]);
-            out->normal[axis] = static_cast<dReal>(normal[axis]);
+        if (!(point.depth >= -touchingTolerance && point.position.allFinite())) continue;
+        int slot = kept++;
+        for (; slot > 0 && point.depth > orderDepth[slot - 1]; --slot) {
+            order[slot] = order[slot - 1];
+            orderDepth[slot] = orderDepth[slot - 1];
         }
+        order[slot] = i;
+        orderDepth[slot] = point.depth;
+    }
+    const int written = std::min(kept, maxContacts);
+    const dReal odeNormal[4] = {static_cast<dReal>(normal.x()), static_cast<dReal>(normal.y()),
+                                static_cast<dReal>(normal.z()), 0};
+    char* outBytes = reinterpret_cast<char*>(contact);
+    for (int k = 0; k < written; ++k, outBytes += skip) {
+        const ContactPoint& point = manifold.points[order[k]];
+        dContactGeom* out = reinterpret_cast<dContactGeom*>(outBytes);
+        out->pos[0] = static_cast<dReal>(point.position.x());
+        out->pos[1] = static_cast<dReal>(point.position.y());
+        out->pos[2] = static_cast<dReal>(point.position.z());
         out->pos[3] = 0;
-        out->normal[3] = 0;
-        out->depth = static_cast<dReal>(std::max(point.depth, 0.0));
+        std::memcpy(out->normal, odeNormal, sizeof odeNormal);
+        out->depth = static_cast<dReal>(std::max(orderDepth[k], 0.0));
         out->g1 = o1;
         out->g2 = o2;
         out->side1 = -1;
         out->side2 = -1;
-        ++written;
     }
     return written;
 }
@@ -219,12 +244,13 @@ int collide(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip,
 }
 
 int collide(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip) {
-    Settings settings;
+    static const Settings defaults;
+    const Settings* settings = &defaults;
     try {
-        settings = detail::installedSettings();
+        settings = &detail::installedSettings(detail::threadCache());
     } catch (...) {  // a lock failure; the defaults are always valid
     }
-    return collide(o1, o2, flags, contact, skip, settings);
+    return collide(o1, o2, flags, contact, skip, *settings);
 }
 
 std::shared_ptr<const Polytope> polytopeOf(dGeomID geom) {

@@ -5,6 +5,7 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <functional>
@@ -46,6 +47,11 @@ struct State {
     mutable std::shared_mutex convexMutex;
     std::unordered_map<const void*, ConvexEntry> convexes;
     std::atomic<std::size_t> convexCount{0};
+    // Advanced (under convexMutex) whenever an entry is removed, replaced or loses its trust: a
+    // thread's cached hull for an address is current while this has not moved since it was
+    // cached. Additions leave it alone, since they cannot change what a cached address maps to.
+    // Starts at 1 so that an empty cache slot (generation 0) never matches.
+    std::atomic<std::uint64_t> convexGeneration{1};
     // The free handler that was active before ours; ours forwards to it (nullptr: free()).
     std::atomic<dFreeFunction*> previousFree{nullptr};
     // Serialises installing the free hook (a read-modify-write of ODE's handler).
@@ -55,8 +61,16 @@ struct State {
     std::unordered_map<BoxKey, std::shared_ptr<const Polytope>, BoxKeyHash> boxes;
 
     mutable std::shared_mutex settingsMutex;
-    Settings settings;
+    Settings settings;  // installedSettingsGeneration moves with it
 };
+
+static_assert(kBorrowedBoxSizes >= 3, "one pair's two boxes must both survive the second lookup");
+
+std::size_t convexSlotOf(const void* geom) {
+    // Geoms are heap blocks at least 16-byte aligned: the low bits carry nothing.
+    const auto address = reinterpret_cast<std::uintptr_t>(geom);
+    return static_cast<std::size_t>((address >> 4) ^ (address >> 11)) % ThreadCache::kConvexSlots;
+}
 
 // Intentionally never destroyed: ODE may free geoms from static destructors that run after ours
 // would have, and the free hook must still find the state then.
@@ -73,6 +87,7 @@ void forgetConvex(const void* address) noexcept {
         auto found = s.convexes.find(address);
         if (found == s.convexes.end()) return;
         released = std::move(found->second.record);
+        s.convexGeneration.fetch_add(1, std::memory_order_release);
         s.convexes.erase(found);
         s.convexCount.fetch_sub(1, std::memory_order_relaxed);
     }
@@ -106,6 +121,7 @@ void ensureFreeHook() {
     {
         std::unique_lock lock(s.convexMutex);
         for (auto& entry : s.convexes) entry.second.trusted = false;
+        s.convexGeneration.fetch_add(1, std::memory_order_release);
     }
     s.previousFree.store(current, std::memory_order_release);
     dSetFreeHandler(&freeHook);
@@ -146,9 +162,10 @@ dGeomID createRegisteredConvex(dSpaceID space, std::shared_ptr<ConvexRecord> rec
     {
         std::unique_lock lock(s.convexMutex);
         ConvexEntry& entry = s.convexes[geom];
-        if (entry.record)
+        if (entry.record) {
             replaced = std::move(entry.record);
-        else
+            s.convexGeneration.fetch_add(1, std::memory_order_release);
+        } else
             s.convexCount.fetch_add(1, std::memory_order_relaxed);
         entry.record = std::move(record);
         entry.trusted = true;
@@ -179,6 +196,32 @@ std::shared_ptr<const Polytope> registeredConvex(dGeomID geom) {
     return record->polytope;
 }
 
+const Polytope* borrowedConvex(ThreadCache& cache, dGeomID geom) {
+    State& s = state();
+    if (s.convexCount.load(std::memory_order_relaxed) == 0) return nullptr;
+    // With another free handler in front of ours, frees go unseen and the generation cannot be
+    // trusted: every lookup then takes registeredConvex's checked path.
+    // (The registry keeps holding the hull after the temporary shared_ptr is gone.)
+    if (dGetFreeHandler() != &freeHook) return registeredConvex(geom).get();
+    ThreadCache::ConvexSlot& slot = cache.convexes[convexSlotOf(geom)];
+    if (slot.geom == geom && slot.generation == s.convexGeneration.load(std::memory_order_acquire))
+        return slot.hull;
+    const Polytope* hull;
+    bool trusted;
+    std::uint64_t generation;
+    {
+        std::shared_lock lock(s.convexMutex);
+        auto found = s.convexes.find(geom);
+        if (found == s.convexes.end()) return nullptr;
+        hull = found->second.record->polytope.get();
+        trusted = found->second.trusted;
+        generation = s.convexGeneration.load(std::memory_order_relaxed);  // moves only under the lock
+    }
+    if (!trusted) return matchesGeom(*hull, geom) ? hull : nullptr;  // checked each time, not cached
+    slot = ThreadCache::ConvexSlot{geom, hull, generation};
+    return hull;
+}
+
 std::size_t registeredConvexCount() { return state().convexCount.load(); }
 
 std::shared_ptr<const Polytope> boxPolytope(double halfX, double halfY, double halfZ) {
@@ -195,16 +238,61 @@ std::shared_ptr<const Polytope> boxPolytope(double halfX, double halfY, double h
     return s.boxes.emplace(key, std::move(built)).first->second;
 }
 
-Settings installedSettings() {
+const Polytope& borrowedBoxPolytopeSlow(ThreadCache& cache, double halfX, double halfY, double halfZ) {
+    const std::uint64_t now = ++cache.boxClock;
+    ThreadCache::BoxSlot* oldest = &cache.boxes[0];
+    for (ThreadCache::BoxSlot& slot : cache.boxes) {
+        if (slot.halfExtents[0] == halfX && slot.halfExtents[1] == halfY && slot.halfExtents[2] == halfZ) {
+            slot.lastUse = now;
+            cache.lastBox = static_cast<int>(&slot - cache.boxes);
+            return *slot.polytope;
+        }
+        if (slot.lastUse < oldest->lastUse) oldest = &slot;
+    }
+    // The least recently used slot is never one this thread used within the last
+    // kBorrowedBoxSizes − 1 lookups, so no reference handed out in that window dangles.
+    std::shared_ptr<const Polytope> polytope = boxPolytope(halfX, halfY, halfZ);  // may throw: slot untouched
+    oldest->polytope = std::move(polytope);
+    oldest->halfExtents[0] = halfX;
+    oldest->halfExtents[1] = halfY;
+    oldest->halfExtents[2] = halfZ;
+    oldest->lastUse = now;
+    cache.lastBox = static_cast<int>(oldest - cache.boxes);
+    return *oldest->polytope;
+}
+
+Vec3 unitPlaneNormalSlow(ThreadCache& cache, double a, double b, double c) {
+    for (int i = 0; i < ThreadCache::kPlaneSlots; ++i) {
+        const ThreadCache::PlaneSlot& slot = cache.planes[i];
+        if (slot.raw[0] == a && slot.raw[1] == b && slot.raw[2] == c) {
+            cache.lastPlane = i;
+            return slot.unit;
+        }
+    }
+    cache.lastPlane = (cache.lastPlane + 1) % ThreadCache::kPlaneSlots;
+    ThreadCache::PlaneSlot& slot = cache.planes[cache.lastPlane];
+    slot.raw[0] = a;
+    slot.raw[1] = b;
+    slot.raw[2] = c;
+    slot.unit = Vec3(a, b, c).normalized();
+    return slot.unit;
+}
+
+std::atomic<std::uint64_t> installedSettingsGeneration{1};
+
+const Settings& refreshInstalledSettings(ThreadCache& cache) {
     State& s = state();
     std::shared_lock lock(s.settingsMutex);
-    return s.settings;
+    cache.settings = s.settings;
+    cache.settingsGeneration = installedSettingsGeneration.load(std::memory_order_relaxed);  // moves only under the lock
+    return cache.settings;
 }
 
 void setInstalledSettings(const Settings& settings) {
     State& s = state();
     std::unique_lock lock(s.settingsMutex);
     s.settings = settings;
+    installedSettingsGeneration.fetch_add(1, std::memory_order_release);
 }
 
 }  // namespace gdc::ode::detail

@@ -3,8 +3,12 @@
 // ODE leaves no other choice: a dColliderFn carries no user pointer (so the installed settings
 // must be found globally), ODE 0.16.2 has no getter for a dConvex's data (so the hull of a
 // createConvex geom must be found by the geom's address) and no geom-destroy callback (so the
-// registry learns of a destroyed geom through ODE's free handler). Everything here is guarded by
-// locks; the core stays pure.
+// registry learns of a destroyed geom through ODE's free handler). Everything shared is guarded
+// by locks; the core stays pure.
+//
+// collide() runs for every pair on every step, so its lookups (hull, box polytope, settings) are
+// answered from per-thread caches that take no lock and touch no reference count on a hit; a
+// generation counter per shared table tells a thread when its copy may be stale.
 #pragma once
 
 #include <gdcontact/polytope.hpp>
@@ -12,7 +16,10 @@
 
 #include <ode/ode.h>
 
+#include <atomic>
+#include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -41,8 +48,90 @@ std::size_t registeredConvexCount();
 /// cache: building a Polytope allocates, and box–box must be cheap).
 std::shared_ptr<const Polytope> boxPolytope(double halfX, double halfY, double halfZ);
 
-/// The settings of the last install() (defaults before).
-Settings installedSettings();
 void setInstalledSettings(const Settings& settings);
+
+// ---- collide()'s lookups: per-thread, no lock and no reference count on a hit ----
+
+/// Box sizes a thread keeps at once (least recently used evicted).
+constexpr int kBorrowedBoxSizes = 8;
+
+/// What one thread keeps so that collide() neither locks nor writes shared memory in the common
+/// case. Get it with threadCache(); the lookups below take it so that one call reaches it once.
+struct ThreadCache {
+    struct BoxSlot {
+        double halfExtents[3] = {NAN, NAN, NAN};    // NaN: never equal, so an empty slot never hits
+        std::shared_ptr<const Polytope> polytope;  // keeps the borrowed polytope alive
+        std::uint64_t lastUse = 0;
+    };
+    BoxSlot boxes[kBorrowedBoxSizes];
+    std::uint64_t boxClock = 0;
+    int lastBox = 0;  // checked first: a scene's boxes mostly share a few sizes
+
+    // Direct-mapped by address; a collision only costs a locked lookup.
+    struct ConvexSlot {
+        const void* geom = nullptr;
+        const Polytope* hull = nullptr;
+        std::uint64_t generation = 0;  // the registry's generation when cached (0: empty)
+    };
+    static constexpr std::size_t kConvexSlots = 128;
+    ConvexSlot convexes[kConvexSlots];
+
+    struct PlaneSlot {
+        double raw[3] = {NAN, NAN, NAN};  // NaN: never equal, so an empty slot never hits
+        Vec3 unit = Vec3::Zero();
+    };
+    static constexpr int kPlaneSlots = 4;
+    PlaneSlot planes[kPlaneSlots];
+    int lastPlane = 0;  // also the next slot to refill (round robin)
+
+    std::uint64_t settingsGeneration = 0;  // 0: never copied
+    Settings settings;
+};
+
+inline ThreadCache& threadCache() {
+    thread_local ThreadCache cache;
+    return cache;
+}
+
+/// The hull of a createConvex geom for collide(): borrowed, not shared. It stays valid while the
+/// geom lives, since a hull is released only when ODE frees its geom, and a geom may not be
+/// destroyed while it is being collided. nullptr for a geom gdcontact did not create.
+const Polytope* borrowedConvex(ThreadCache& cache, dGeomID geom);
+
+/// As boxPolytope, for collide(): borrowed from the thread's cache. The reference stays valid
+/// until this thread has looked up kBorrowedBoxSizes − 1 other sizes, which covers both boxes
+/// of one pair.
+const Polytope& borrowedBoxPolytopeSlow(ThreadCache& cache, double halfX, double halfY, double halfZ);
+inline const Polytope& borrowedBoxPolytope(ThreadCache& cache, double halfX, double halfY, double halfZ) {
+    ThreadCache::BoxSlot& last = cache.boxes[cache.lastBox];
+    if (last.halfExtents[0] == halfX && last.halfExtents[1] == halfY && last.halfExtents[2] == halfZ) {
+        last.lastUse = ++cache.boxClock;
+        return *last.polytope;
+    }
+    return borrowedBoxPolytopeSlow(cache, halfX, halfY, halfZ);
+}
+
+/// (a, b, c) scaled to unit length, exactly as Vec3(a, b, c).normalized() gives it, remembered
+/// for the thread's last few planes: a scene has few planes, and the square root and divisions
+/// are a noticeable part of a cheap box–plane call.
+Vec3 unitPlaneNormalSlow(ThreadCache& cache, double a, double b, double c);
+inline Vec3 unitPlaneNormal(ThreadCache& cache, double a, double b, double c) {
+    const ThreadCache::PlaneSlot& last = cache.planes[cache.lastPlane];
+    if (last.raw[0] == a && last.raw[1] == b && last.raw[2] == c) return last.unit;
+    return unitPlaneNormalSlow(cache, a, b, c);
+}
+
+/// Advanced by every install() (under the settings lock); starts at 1, so that a thread's
+/// never-filled copy (generation 0) is stale.
+extern std::atomic<std::uint64_t> installedSettingsGeneration;
+
+/// The settings of the last install() (defaults before), as the thread's copy, refreshed when
+/// install() has run since it was taken. Valid until this thread's next lookup.
+const Settings& refreshInstalledSettings(ThreadCache& cache);
+inline const Settings& installedSettings(ThreadCache& cache) {
+    if (cache.settingsGeneration == installedSettingsGeneration.load(std::memory_order_acquire))
+        return cache.settings;
+    return refreshInstalledSettings(cache);
+}
 
 }  // namespace gdc::ode::detail
