@@ -223,17 +223,22 @@ void refineNormal(Vec3& normal, double& normalOverlap, const FeatureGeometry& a,
 void emit(const LiftedPoints& points, const Vec3& normal, const Pose& commonToWorld, const Settings& settings,
           Manifold& manifold) {
     int chosen[kMaxManifoldPoints];
-    int maxCount = std::max(1, std::min(settings.maxContacts, kMaxManifoldPoints));
-    int count = reduceContacts(points, maxCount, chosen);
+    const int maxCount = std::max(1, std::min(settings.maxContacts, kMaxManifoldPoints));
+    const int total = static_cast<int>(points.size());
+    const int count = total <= maxCount ? total : reduceContacts(points, maxCount, chosen);
     manifold.normal = commonToWorld.rotation * normal;
     manifold.pointCount = count;
+    // x·0 is 0 for every finite x and NaN otherwise: one test for all the coordinates written.
+    double nonFinite = 0;
     for (int i = 0; i < count; ++i) {
-        manifold.points[i] = {commonToWorld.apply(points[chosen[i]].position), points[chosen[i]].depth};
-        // Finite input can still overflow (a plane offset of 1e308, found by the fuzzer): refuse it
-        // rather than hand out an infinite or NaN contact.
-        if (!manifold.points[i].position.allFinite() || !std::isfinite(manifold.points[i].depth))
-            throw InvalidInput("the contact overflows double precision (coordinates or offsets near 1e308)");
+        const LiftedPoint& point = points[total <= maxCount ? i : chosen[i]];
+        manifold.points[i] = {commonToWorld.apply(point.position), point.depth};
+        nonFinite += (manifold.points[i].position.sum() + point.depth) * 0.0;
     }
+    // Finite input can still overflow (a plane offset of 1e308, found by the fuzzer): refuse it
+    // rather than hand out an infinite or NaN contact.
+    if (!(nonFinite == 0))
+        throw InvalidInput("the contact overflows double precision (coordinates or offsets near 1e308)");
 }
 
 }  // namespace
@@ -381,30 +386,46 @@ Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b, const
     const double keepDepth = -settings.margin - tolerance;
     auto depthOf = [&](const Vec3& x) { return offset - m.dot(x); };
     auto add = [&](const Vec3& x, double depth) { kept.push_back({x + 0.5 * depth * m, depth, Vec2::Zero()}); };
-    for (int i = 0; i < count; ++i) {
-        const Vec3& x = a.vertices()[indices[i]];
-        const double depth = depthOf(x);
-        if (depth >= keepDepth) add(x, depth);
-    }
-    // Where an edge of the face (of each face of its cap) runs from contact into a clear gap, the
-    // point where it crosses the contact depth is a contact too: the points then span the region
-    // in contact, not just the deepest corners of a slightly tilted face (as in the intersection
-    // of two features, feature_intersection.cpp). Cap faces share edges: each crossing once.
-    for (int face : cap) {
-        const Polytope::Face& loop = a.faces()[face];
-        const int* corners = a.faceVertices().data() + loop.first;
-        for (int i = 0; i < loop.count; ++i) {
-            const Vec3& x = a.vertices()[corners[i]];
-            const Vec3& y = a.vertices()[corners[i + 1 == loop.count ? 0 : i + 1]];
-            const double depthX = depthOf(x), depthY = depthOf(y);
-            const bool leaves = depthX >= -settings.margin && depthY < keepDepth;
-            const bool enters = depthX < keepDepth && depthY >= -settings.margin;
-            if (!leaves && !enters) continue;
-            const Vec3 crossing = x + (depthX + settings.margin) / (depthX - depthY) * (y - x);
-            bool known = false;
+    // Where an edge of the feature runs from contact into a clear gap, the point where it crosses
+    // the contact depth is a contact too: the points then span the region in contact, not just
+    // the deepest corners of a slightly tilted face (as in the intersection of two features,
+    // feature_intersection.cpp). `known` skips crossings already found (cap faces share edges).
+    auto addCrossing = [&](const Vec3& x, double depthX, const Vec3& y, double depthY, bool checkKnown) {
+        const bool leaves = depthX >= -settings.margin && depthY < keepDepth;
+        const bool enters = depthX < keepDepth && depthY >= -settings.margin;
+        if (!leaves && !enters) return;
+        const Vec3 crossing = x + (depthX + settings.margin) / (depthX - depthY) * (y - x);
+        if (checkKnown)
             for (const LiftedPoint& point : kept)
-                known = known || (point.position - 0.5 * point.depth * m - crossing).squaredNorm() <= tolerance * tolerance;
-            if (!known) add(crossing, depthOf(crossing));
+                if ((point.position - 0.5 * point.depth * m - crossing).squaredNorm() <= tolerance * tolerance) return;
+        add(crossing, depthOf(crossing));
+    };
+    if (cap.size() <= 1) {
+        // One vertex, an edge, or a face's loop: each depth once, each point in loop order.
+        SmallVector<double, 32> depths;
+        for (int i = 0; i < count; ++i) depths.push_back(depthOf(a.vertices()[indices[i]]));
+        const int edges = count >= 3 ? count : count - 1;  // a face's loop closes; an edge is one edge
+        for (int i = 0; i < count; ++i) {
+            const Vec3& x = a.vertices()[indices[i]];
+            if (depths[i] >= keepDepth) add(x, depths[i]);
+            if (i >= edges) continue;
+            const int next = i + 1 == count ? 0 : i + 1;
+            addCrossing(x, depths[i], a.vertices()[indices[next]], depths[next], false);
+        }
+    } else {
+        for (int i = 0; i < count; ++i) {
+            const Vec3& x = a.vertices()[indices[i]];
+            const double depth = depthOf(x);
+            if (depth >= keepDepth) add(x, depth);
+        }
+        for (int face : cap) {
+            const Polytope::Face& loop = a.faces()[face];
+            const int* corners = a.faceVertices().data() + loop.first;
+            for (int i = 0; i < loop.count; ++i) {
+                const Vec3& x = a.vertices()[corners[i]];
+                const Vec3& y = a.vertices()[corners[i + 1 == loop.count ? 0 : i + 1]];
+                addCrossing(x, depthOf(x), y, depthOf(y), true);
+            }
         }
     }
     if (kept.empty()) {  // a tilted face whose selected vertices all float: keep the deepest one
