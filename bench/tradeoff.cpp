@@ -499,6 +499,9 @@ std::vector<Contender> settingsSweep(const TestSets& sets) {
         s.maxContacts = v;
         out.push_back(gdcontactWith(sets, s, "maxContacts", text(v)));
     }
+    gdc::Settings spanning;  // contacts where the region's edges cross the contact depth, too
+    spanning.spanContactRegion = true;
+    out.push_back(gdcontactWith(sets, spanning, "spanContactRegion", "true"));
     gdc::Settings separatingAxis;  // the whole pipeline with the SAT's exact normal in stage 1
     separatingAxis.normalMethod = gdc::NormalMethod::SeparatingAxis;
     out.push_back(gdcontactWith(sets, separatingAxis, "normalMethod", "SeparatingAxis"));

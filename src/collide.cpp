@@ -302,7 +302,8 @@ Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const 
     if (!separatingAxis) refineNormal(normal, normalOverlap, featureA, featureB, pair);  // SAT's is exact already
 
     // Stage 3: intersection in the contact plane, each point with its own depth.
-    LiftedPoints kept = intersectFeatures(featureA, featureB, normal, tolerance, -settings.margin);
+    LiftedPoints kept =
+        intersectFeatures(featureA, featureB, normal, tolerance, -settings.margin, settings.spanContactRegion);
     // The deepest contact must carry the whole penetration along n — the distance B must move
     // along n to clear A, the exit of the ray along n through A − B (ODE's contract: moving by
     // 0.96·depth still touches, 1.04·depth separates). The intersection misses it when the
@@ -386,10 +387,10 @@ Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b, const
     const double keepDepth = -settings.margin - tolerance;
     auto depthOf = [&](const Vec3& x) { return offset - m.dot(x); };
     auto add = [&](const Vec3& x, double depth) { kept.push_back({x + 0.5 * depth * m, depth, Vec2::Zero()}); };
-    // Where an edge of the feature runs from contact into a clear gap, the point where it crosses
-    // the contact depth is a contact too: the points then span the region in contact, not just
-    // the deepest corners of a slightly tilted face (as in the intersection of two features,
-    // feature_intersection.cpp). `known` skips crossings already found (cap faces share edges).
+    // With Settings::spanContactRegion: where an edge of the feature runs from contact into a clear
+    // gap, the point where it crosses the contact depth is a contact too, so the points span the
+    // region in contact, not just the deepest corners of a slightly tilted face (as in the
+    // intersection of two features). `checkKnown` skips crossings already found (cap faces share edges).
     auto addCrossing = [&](const Vec3& x, double depthX, const Vec3& y, double depthY, bool checkKnown) {
         const bool leaves = depthX >= -settings.margin && depthY < keepDepth;
         const bool enters = depthX < keepDepth && depthY >= -settings.margin;
@@ -408,7 +409,7 @@ Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b, const
         for (int i = 0; i < count; ++i) {
             const Vec3& x = a.vertices()[indices[i]];
             if (depths[i] >= keepDepth) add(x, depths[i]);
-            if (i >= edges) continue;
+            if (!settings.spanContactRegion || i >= edges) continue;
             const int next = i + 1 == count ? 0 : i + 1;
             addCrossing(x, depths[i], a.vertices()[indices[next]], depths[next], false);
         }
@@ -419,6 +420,7 @@ Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b, const
             if (depth >= keepDepth) add(x, depth);
         }
         for (int face : cap) {
+            if (!settings.spanContactRegion) break;
             const Polytope::Face& loop = a.faces()[face];
             const int* corners = a.faceVertices().data() + loop.first;
             for (int i = 0; i < loop.count; ++i) {

@@ -166,7 +166,8 @@ struct ProjectedPiece {
 // points within `tolerance` (in the plane) of one already there when `merge` (pieces of caps
 // share their edges' points).
 void intersectPieces(const ProjectedPiece& a, const ProjectedPiece& b, const Vec3& u, const Vec3& v,
-                     const Vec3& normal, double tolerance, double minimumDepth, bool merge, LiftedPoints& out) {
+                     const Vec3& normal, double tolerance, double minimumDepth, bool spanRegion, bool merge,
+                     LiftedPoints& out) {
     Polygon2 region = intersect2d(a.polygon, b.polygon, tolerance);
     // Drop near-duplicate consecutive points produced where edges cross at a vertex.
     const double toleranceSquared = tolerance * tolerance;
@@ -183,12 +184,13 @@ void intersectPieces(const ProjectedPiece& a, const ProjectedPiece& b, const Vec
         }
         out.push_back({q.x() * u + q.y() * v + 0.5 * (heightA + heightB) * normal, heightA - heightB, q});
     };
-    // The depth is affine along every edge of the region (both features are flat there), so where
-    // an edge runs from contact into a clear gap, the contact region ends where the depth crosses
-    // `minimumDepth`, and that point is a contact too: dropping the floating vertices without it
-    // shrank a slightly tilted face's support polygon to its deepest corners (a cube resting 1° off
-    // flat kept about half of its true contact area). An edge whose far end floats by less than
-    // the tolerance adds nothing: its end is kept, and a crossing there would be rounding noise.
+    // With `spanRegion`: the depth is affine along every edge of the region (both features are flat
+    // there), so where an edge runs from contact into a clear gap, the contact region ends where
+    // the depth crosses `minimumDepth`, and that point is a contact too. Without it the floating
+    // vertices are simply dropped, which shrinks a slightly tilted face's support polygon to its
+    // deepest corners (a cube resting 1° off flat keeps about half of its true contact area). An
+    // edge whose far end floats by less than the tolerance adds nothing: its end is kept, and a
+    // crossing there would be rounding noise.
     const std::size_t count = unique.size();
     SmallVector<double, 16> heightsA, heightsB;
     for (const Vec2& q : unique) heightsA.push_back(a.height(q)), heightsB.push_back(b.height(q));
@@ -197,7 +199,7 @@ void intersectPieces(const ProjectedPiece& a, const ProjectedPiece& b, const Vec
     for (std::size_t i = 0; i < count; ++i) {
         const double depth = heightsA[i] - heightsB[i];
         if (depth >= keepDepth) emit(unique[i], heightsA[i], heightsB[i]);
-        if (i >= edges) continue;
+        if (!spanRegion || i >= edges) continue;
         const std::size_t next = i + 1 == count ? 0 : i + 1;
         const double nextDepth = heightsA[next] - heightsB[next];
         const bool leaves = depth >= minimumDepth && nextDepth < keepDepth;
@@ -211,13 +213,13 @@ void intersectPieces(const ProjectedPiece& a, const ProjectedPiece& b, const Vec
 }  // namespace
 
 LiftedPoints intersectFeatures(const FeatureGeometry& a, const FeatureGeometry& b, const Vec3& normal,
-                               double tolerance, double minimumDepth) {
+                               double tolerance, double minimumDepth, bool spanRegion) {
     Vec3 u, v;
     planeBasis(normal, u, v);
     LiftedPoints all;
     if (a.capFaces.empty() && b.capFaces.empty()) {
         intersectPieces(ProjectedPiece(a, u, v, normal), ProjectedPiece(b, u, v, normal), u, v, normal, tolerance,
-                        minimumDepth, false, all);
+                        minimumDepth, spanRegion, false, all);
         return all;
     }
     // A cap bends at its inner edges, so its outline alone would miss the deepest point (an inner
@@ -240,7 +242,7 @@ LiftedPoints intersectFeatures(const FeatureGeometry& a, const FeatureGeometry& 
     for (const ProjectedPiece& pieceA : piecesA)
         for (const ProjectedPiece& pieceB : piecesB)
             if (pieceA.boundsMeet(pieceB, tolerance))
-                intersectPieces(pieceA, pieceB, u, v, normal, tolerance, minimumDepth, true, all);
+                intersectPieces(pieceA, pieceB, u, v, normal, tolerance, minimumDepth, spanRegion, true, all);
     return all;
 }
 

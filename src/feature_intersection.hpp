@@ -42,11 +42,11 @@ void planeBasis(const Vec3& n, Vec3& u, Vec3& v);
 
 /// Intersects feature A and feature B in the plane ⟂ `normal` (unit, from A towards B).
 /// `tolerance` is a length: the slack of containment tests. Points shallower than `minimumDepth`
-/// by more than `tolerance` (the shapes do not touch there) are dropped, and where an edge of the
-/// region runs from depth ≥ `minimumDepth` into such a gap, the point where it crosses
-/// `minimumDepth` is added: the points span the region of contact. Returns nothing when the
-/// projections do not meet (the caller then falls back to the growth-distance witness).
+/// by more than `tolerance` (the shapes do not touch there) are dropped; with `spanRegion`, where
+/// an edge of the region runs from depth ≥ `minimumDepth` into such a gap, the point where it
+/// crosses `minimumDepth` is added, so that the points span the region of contact. Returns nothing
+/// when the projections do not meet (the caller then falls back to the growth-distance witness).
 LiftedPoints intersectFeatures(const FeatureGeometry& a, const FeatureGeometry& b, const Vec3& normal,
-                               double tolerance, double minimumDepth = -INFINITY);
+                               double tolerance, double minimumDepth = -INFINITY, bool spanRegion = false);
 
 }  // namespace gdc::detail

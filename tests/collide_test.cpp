@@ -56,19 +56,21 @@ TEST_CASE("box on box at random yaw and offset: the analytic intersection polygo
     CHECK(checked > 300);
 }
 
-TEST_CASE("a face tilted 0.2°–2° onto a face: the points span the analytic contact region up to its zero-depth line") {
+TEST_CASE("spanContactRegion: a face tilted 0.2°–2° onto a face gives the analytic contact region up to its zero-depth line") {
     // Cube B tilted by θ about x over cube A, its lower bottom edge sunk by d: B's bottom face is
     // below A's top (z = 0.5) for t ∈ [−0.5, t0] along its tilted side, t0 = d / sin θ − 0.5, so the
     // contact region is the rectangle x ∈ [±0.5], y ∈ [y(−0.5), y(t0)], y(t) = 0.5·sin θ + t·cos θ,
     // with depth d along its low side and 0 along its high side. The whole scene is placed in a
     // generic world frame.
     const Pose world = makePose(Vec3(3.0, -2.0, 1.5), rotationAbout(Vec3(1, 2, 3), 0.7));
+    Settings spanning = allContacts();
+    spanning.spanContactRegion = true;
     for (double degrees : {0.2, 0.5, 1.0, 2.0}) {
         const double theta = degrees * M_PI / 180, sink = 0.3 * std::sin(theta);
         const double height = 0.5 + 0.5 * std::cos(theta) + 0.5 * std::sin(theta) - sink;
         const Pose top = makePose(Vec3(0, 0, height), rotationAbout(Vec3::UnitX(), theta));
         const Pose poseB{world.rotation * top.rotation, world.apply(top.position)};
-        const Manifold m = collide(unitCube(), world, unitCube(), poseB, allContacts());
+        const Manifold m = collide(unitCube(), world, unitCube(), poseB, spanning);
         INFO("tilt " << degrees << "°");
         REQUIRE(m.pointCount == 4);
         CHECK((m.normal - world.rotation * Vec3::UnitZ()).norm() < 1e-12);
@@ -88,6 +90,10 @@ TEST_CASE("a face tilted 0.2°–2° onto a face: the points span the analytic c
         CHECK(deep == 2);
         CHECK(touching == 2);
         requireOnSurfaces(m, unitCube(), world, unitCube(), poseB, 1e-9);
+        // Off (the default), as dBoxBox: only the overlapping corners, the two of the deepest edge.
+        const Manifold corners = collide(unitCube(), world, unitCube(), poseB, allContacts());
+        REQUIRE(corners.pointCount == 2);
+        for (int i = 0; i < corners.pointCount; ++i) CHECK(corners.points[i].depth == Approx(sink).margin(1e-12));
     }
 }
 
@@ -310,18 +316,20 @@ TEST_CASE("a polytope on a half-space: a resting face gives its corners, a tilte
     CHECK(collide(unitCube(), makePose(Vec3(0, 0, 0.51)), ground).empty());
 }
 
-TEST_CASE("a box tilted 0.2°–2° on a half-space: its deepest edge and the zero-depth line across its face") {
+TEST_CASE("spanContactRegion: a box tilted 0.2°–2° on a half-space gives its deepest edge and the zero-depth line across its face") {
     // A unit cube tilted by θ about x, its lower bottom edge sunk by d below the plane z = 0: the
     // face is below the plane for t ∈ [−0.5, t0] along its tilted side, t0 = d / sin θ − 0.5.
     const Pose world = makePose(Vec3(-1.0, 4.0, 2.0), rotationAbout(Vec3(3, -1, 2), 1.1));
     const Vec3 up = world.rotation * Vec3::UnitZ();
     const HalfSpace ground{up, up.dot(world.position)};  // the plane z = 0 of the local frame
+    Settings spanning = allContacts();
+    spanning.spanContactRegion = true;
     for (double degrees : {0.2, 0.5, 1.0, 2.0}) {
         const double theta = degrees * M_PI / 180, sink = 0.3 * std::sin(theta);
         const double height = 0.5 * std::cos(theta) + 0.5 * std::sin(theta) - sink;
         const Pose local = makePose(Vec3(0, 0, height), rotationAbout(Vec3::UnitX(), theta));
         const Pose pose{world.rotation * local.rotation, world.apply(local.position)};
-        const Manifold m = collide(unitCube(), pose, ground, allContacts());
+        const Manifold m = collide(unitCube(), pose, ground, spanning);
         INFO("tilt " << degrees << "°");
         REQUIRE(m.pointCount == 4);
         CHECK((m.normal + up).norm() < 1e-12);

@@ -35,6 +35,14 @@ struct Settings {
     /// for points that are about to touch (fewer missed contacts at large time steps, more points).
     double margin = 0.0;
 
+    /// Stage 3 — also report where the contact region ends: where an edge of the intersection runs
+    /// from contact into a gap, the point where its depth crosses −margin is added (a contact of
+    /// depth −margin). On: the points span the exact contact region of a slightly tilted face
+    /// (area ratio 1 instead of ~0.56, docs/benchmarks.md). Off (default), as ODE's dBoxBox and
+    /// Bullet's clipping do: only overlapping vertices. Off by default because the extra rows made
+    /// ODE's solvers less steady in the paper's scenes (docs/results.md).
+    bool spanContactRegion = false;
+
     /// Reduction — most contact points returned for one pair (count, 1…16). Fewer: cheaper for the
     /// solver, a coarser support polygon (the deepest point and the largest area are always kept).
     int maxContacts = 8;
