@@ -25,6 +25,19 @@ std::vector<Vec2> squareCorners(double half, const Vec2& centre, double yaw) {
     return corners;
 }
 
+// A tilted face's contact region (tests of spanContactRegion): the expected points, two of them
+// at the sink depth along the deepest edge and two at depth 0 where the region ends.
+void checkTiltedRegion(const Manifold& m, const std::vector<Vec3>& expected, double sink) {
+    CHECK(sameSets(positions(m), expected, 1e-9));
+    int deep = 0, touching = 0;
+    for (int i = 0; i < m.pointCount; ++i) {
+        deep += std::abs(m.points[i].depth - sink) < 1e-12;
+        touching += std::abs(m.points[i].depth) < 1e-12;
+    }
+    CHECK(deep == 2);
+    CHECK(touching == 2);
+}
+
 }  // namespace
 
 TEST_CASE("box on box at random yaw and offset: the analytic intersection polygon, exact depth and normal") {
@@ -81,14 +94,7 @@ TEST_CASE("spanContactRegion: a face tilted 0.2°–2° onto a face gives the an
             expected.push_back(world.apply(Vec3(x, y(-0.5), 0.5 - sink / 2)));
             expected.push_back(world.apply(Vec3(x, y(edgeT), 0.5)));
         }
-        CHECK(sameSets(positions(m), expected, 1e-9));
-        int deep = 0, touching = 0;
-        for (int i = 0; i < m.pointCount; ++i) {
-            deep += std::abs(m.points[i].depth - sink) < 1e-12;
-            touching += std::abs(m.points[i].depth) < 1e-12;
-        }
-        CHECK(deep == 2);
-        CHECK(touching == 2);
+        checkTiltedRegion(m, expected, sink);
         requireOnSurfaces(m, unitCube(), world, unitCube(), poseB, 1e-9);
         // Off (the default), as dBoxBox: only the overlapping corners, the two of the deepest edge.
         const Manifold corners = collide(unitCube(), world, unitCube(), poseB, allContacts());
@@ -340,14 +346,7 @@ TEST_CASE("spanContactRegion: a box tilted 0.2°–2° on a half-space gives its
             expected.push_back(world.apply(Vec3(x, y(-0.5), -sink / 2)));
             expected.push_back(world.apply(Vec3(x, y(edgeT), 0)));
         }
-        CHECK(sameSets(positions(m), expected, 1e-9));
-        int deep = 0, touching = 0;
-        for (int i = 0; i < m.pointCount; ++i) {
-            deep += std::abs(m.points[i].depth - sink) < 1e-12;
-            touching += std::abs(m.points[i].depth) < 1e-12;
-        }
-        CHECK(deep == 2);
-        CHECK(touching == 2);
+        checkTiltedRegion(m, expected, sink);
     }
 }
 
