@@ -233,7 +233,7 @@ void emit(const LiftedPoints& points, const Vec3& normal, const Pose& commonToWo
     for (int i = 0; i < count; ++i) {
         const LiftedPoint& point = points[total <= maxCount ? i : chosen[i]];
         manifold.points[i] = {commonToWorld.apply(point.position), point.depth};
-        nonFinite += (manifold.points[i].position.sum() + point.depth) * 0.0;
+        nonFinite += (manifold.points[i].position * 0.0).sum() + point.depth * 0.0;
     }
     // Finite input can still overflow (a plane offset of 1e308, found by the fuzzer): refuse it
     // rather than hand out an infinite or NaN contact.
@@ -282,14 +282,14 @@ Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const 
     auto selectFeatures = [&](const Vec3& n) {
         const Vec3 directionB = bInA.rotation.transpose() * -n;
         manifold.featureA = selectFeature(a, n, pair.supportA(n), angularTolerance);
-        manifold.featureB = selectFeature(b, directionB, pair.supportB(-n), angularTolerance);
+        manifold.featureB = selectFeature(b, directionB, pair.supportBInB(directionB), angularTolerance);
     };
     selectFeatures(normal);
     // Stage 1's check of the growth-distance normal against the faces around the two features
-    // (the overhang fix); the features are then those of the corrected normal. The SAT's normal
-    // needs none: no face overlaps less.
-    // It can only pick a face whose overlap is below half the normal's, so a lower bound of every
-    // face's overlap (the box pair has one) above that settles it without the search.
+    // (the overhang fix); the features are then those of the corrected normal. It can only pick a
+    // face whose overlap is below half the normal's, so a lower bound of every face's overlap (the
+    // box pair has one) above that settles it without the search. The SAT's normal needs no check:
+    // no face overlaps less.
     const bool noFaceClearlySmaller = growth.faceOverlapLowerBound >= kClearlySmallerOverlap * normalOverlap + tolerance;
     if (growth.valid && !noFaceClearlySmaller &&
         preferNearbyFaceNormal(pair, manifold.featureA, manifold.featureB, tolerance, normal, normalOverlap)) {

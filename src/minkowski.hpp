@@ -27,8 +27,10 @@ struct MinkowskiDifference {
     int supportA(const Vec3& direction) const {
         return lastSupportA = a.supportVertex(direction, bruteForceLimit, lastSupportA);
     }
-    int supportB(const Vec3& direction) const {
-        return lastSupportB = b.supportVertex(bInA.rotation.transpose() * direction, bruteForceLimit, lastSupportB);
+    int supportB(const Vec3& direction) const { return supportBInB(bInA.rotation.transpose() * direction); }
+    /// B's support for a direction already in B's own frame.
+    int supportBInB(const Vec3& localDirection) const {
+        return lastSupportB = b.supportVertex(localDirection, bruteForceLimit, lastSupportB);
     }
     Vec3 vertexB(int index) const { return bInA.apply(b.vertices()[index]); }
 
