@@ -392,10 +392,9 @@ Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b, const
     // region in contact, not just the deepest corners of a slightly tilted face (as in the
     // intersection of two features). `checkKnown` skips crossings already found (cap faces share edges).
     auto addCrossing = [&](const Vec3& x, double depthX, const Vec3& y, double depthY, bool checkKnown) {
-        const bool leaves = depthX >= -settings.margin && depthY < keepDepth;
-        const bool enters = depthX < keepDepth && depthY >= -settings.margin;
-        if (!leaves && !enters) return;
-        const Vec3 crossing = x + (depthX + settings.margin) / (depthX - depthY) * (y - x);
+        const double t = contactBoundaryCrossing(depthX, depthY, -settings.margin, tolerance);
+        if (std::isnan(t)) return;
+        const Vec3 crossing = x + t * (y - x);
         if (checkKnown)
             for (const LiftedPoint& point : kept)
                 if ((point.position - 0.5 * point.depth * m - crossing).squaredNorm() <= tolerance * tolerance) return;

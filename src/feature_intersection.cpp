@@ -135,6 +135,13 @@ private:
 
 }  // namespace
 
+double contactBoundaryCrossing(double from, double to, double contactDepth, double tolerance) {
+    const double gap = contactDepth - tolerance;
+    const bool leaves = from >= contactDepth && to < gap;
+    const bool enters = from < gap && to >= contactDepth;
+    return leaves || enters ? (from - contactDepth) / (from - to) : NAN;
+}
+
 void planeBasis(const Vec3& n, Vec3& u, Vec3& v) {
     Vec3 helper = std::abs(n.x()) < 0.57 ? Vec3::UnitX() : (std::abs(n.y()) < 0.57 ? Vec3::UnitY() : Vec3::UnitZ());
     u = helper.cross(n).normalized();
@@ -146,13 +153,12 @@ namespace {
 // A feature (or one face of a cap) projected onto the contact plane once: its CCW polygon, its
 // bounds there, and its lifting back along n.
 struct ProjectedPiece {
-    const FeatureGeometry* feature;
     Polygon2 polygon;
     Vec2 lower, upper;
     LiftedHeight height;
 
     ProjectedPiece(const FeatureGeometry& piece, const Vec3& u, const Vec3& v, const Vec3& n)
-        : feature(&piece), polygon(project(piece, u, v)), height(piece, u, v, n) {
+        : polygon(project(piece, u, v)), height(piece, u, v, n) {
         lower = upper = polygon[0];
         for (const Vec2& p : polygon) lower = lower.cwiseMin(p), upper = upper.cwiseMax(p);
     }
@@ -194,18 +200,16 @@ void intersectPieces(const ProjectedPiece& a, const ProjectedPiece& b, const Vec
     const std::size_t count = unique.size();
     SmallVector<double, 16> heightsA, heightsB;
     for (const Vec2& q : unique) heightsA.push_back(a.height(q)), heightsB.push_back(b.height(q));
-    const std::size_t edges = count >= 3 ? count : count - 1;  // a polygon closes; a segment has one edge
+    const std::size_t edges = count >= 3 ? count : (count == 2 ? 1 : 0);  // a polygon closes; a segment has one edge
     const double keepDepth = minimumDepth - tolerance;
     for (std::size_t i = 0; i < count; ++i) {
         const double depth = heightsA[i] - heightsB[i];
         if (depth >= keepDepth) emit(unique[i], heightsA[i], heightsB[i]);
         if (!spanRegion || i >= edges) continue;
         const std::size_t next = i + 1 == count ? 0 : i + 1;
-        const double nextDepth = heightsA[next] - heightsB[next];
-        const bool leaves = depth >= minimumDepth && nextDepth < keepDepth;
-        const bool enters = depth < keepDepth && nextDepth >= minimumDepth;
-        if (!leaves && !enters) continue;
-        const Vec2 crossing = unique[i] + (depth - minimumDepth) / (depth - nextDepth) * (unique[next] - unique[i]);
+        const double t = contactBoundaryCrossing(depth, heightsA[next] - heightsB[next], minimumDepth, tolerance);
+        if (std::isnan(t)) continue;
+        const Vec2 crossing = unique[i] + t * (unique[next] - unique[i]);
         emit(crossing, a.height(crossing), b.height(crossing));
     }
 }

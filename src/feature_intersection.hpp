@@ -37,6 +37,12 @@ struct LiftedPoint {
 
 using LiftedPoints = SmallVector<LiftedPoint, 16>;
 
+/// Where the edge from a point of depth `from` to one of depth `to` crosses `contactDepth`, as the
+/// fraction of the way from the first (the depth is affine along the edge), when the edge runs
+/// between contact (depth ≥ contactDepth) and a clear gap (depth < contactDepth − tolerance) in
+/// either direction; NaN otherwise (both in contact, or the gap within rounding of the contact).
+double contactBoundaryCrossing(double from, double to, double contactDepth, double tolerance);
+
 /// Orthonormal basis (u, v) of the plane ⟂ n (unit) with u × v = n.
 void planeBasis(const Vec3& n, Vec3& u, Vec3& v);
 
