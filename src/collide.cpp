@@ -2,6 +2,7 @@
 // (precision far from the origin) and mapped to the world at the end.
 #include <gdcontact/collide.hpp>
 
+#include "collide_general.hpp"
 #include "feature_intersection.hpp"
 #include "gauss_map.hpp"
 #include "growth_distance.hpp"
@@ -243,8 +244,10 @@ void emit(const LiftedPoints& points, const Vec3& normal, const Pose& commonToWo
 
 }  // namespace
 
-Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
-                 const Settings& settings) {
+namespace detail {
+
+Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
+                        const Settings& settings) {
     requireFinite(poseA, "A");
     requireFinite(poseB, "B");
     Manifold manifold;
@@ -344,7 +347,7 @@ Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const 
     return manifold;
 }
 
-Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings) {
+Manifold collideGeneral(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings) {
     requireFinite(poseA, "A");
     // Normalised through its largest component first: a finite normal of huge (or tiny)
     // components would overflow (underflow) the plain norm and become a zero (or NaN) direction.
@@ -442,6 +445,18 @@ Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b, const
     }
     emit(kept, normal, poseA, settings, manifold);
     return manifold;
+}
+
+}  // namespace detail
+
+// The public queries: the specialised paths where they apply, the general pipeline otherwise.
+Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
+                 const Settings& settings) {
+    return detail::collideGeneral(a, poseA, b, poseB, settings);
+}
+
+Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings) {
+    return detail::collideGeneral(a, poseA, b, settings);
 }
 
 }  // namespace gdc
