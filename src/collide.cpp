@@ -220,6 +220,62 @@ void refineNormal(Vec3& normal, double& normalOverlap, const FeatureGeometry& a,
     }
 }
 
+// Whether the deepest lifted point provably carries the whole penetration along n, so the ray cast
+// of the depth confirmation (separationAlong) could not add a point. The penetration along n is
+// t* = max{t : t·n ∈ A − B}, and every direction m with m·n > 0 bounds it from above by the support
+// plane of A − B along m: t* ≤ overlap(m)/(m·n). The lifted point q is a lower bound, so a direction
+// whose bound is within `slack` of q's depth settles it. The direction that makes the bound tight is
+// the normal of the facet of A − B the ray leaves through, and q's provenance names it (van den
+// Bergen 2004, §4.3.4: the facets of A − B are face ⊕ vertex and edge ⊕ edge): A's vertex inside B's
+// face — B's face normal; B's vertex inside A's face — A's face normal; a crossing of an edge of
+// each — their cross product. At most three candidates, two support searches each, where the ray
+// cast takes dozens on the thin facets that a slightly tilted resting face makes of A − B.
+// Features with caps (several faces) are left to the ray cast.
+bool penetrationCertified(const LiftedPoint& deepest, const FeatureGeometry& a, const FeatureGeometry& b,
+                          const Vec3& normal, const MinkowskiDifference& pair, double slack, double tolerance) {
+    if (!a.capFaces.empty() || !b.capFaces.empty()) return false;
+    Vec3 u, v;
+    planeBasis(normal, u, v);
+    const Vec2& q = deepest.planar;
+    auto planar = [&](const Vec3& p) { return Vec2(p.dot(u), p.dot(v)); };
+    const double toleranceSquared = tolerance * tolerance;
+    auto certifies = [&](const Vec3& m) {
+        const double along = m.dot(normal);
+        if (!(along > 1e-6 * m.norm())) return false;
+        return pair.overlapAlong(m) / along <= deepest.depth + slack;
+    };
+    auto isVertexOf = [&](const FeatureGeometry& feature) {
+        for (const Vec3& p : feature.points)
+            if ((planar(p) - q).squaredNorm() <= toleranceSquared) return true;
+        return false;
+    };
+    if (b.type == FeatureType::Face && isVertexOf(a) && certifies(-b.planeNormal)) return true;
+    if (a.type == FeatureType::Face && isVertexOf(b) && certifies(a.planeNormal)) return true;
+    // Edges of a feature whose projection passes through q (within the tolerance).
+    auto edgesThrough = [&](const FeatureGeometry& feature, SmallVector<Vec3, 4>& out) {
+        const int count = static_cast<int>(feature.points.size());
+        const int edges = count >= 3 ? count : count - 1;
+        for (int i = 0; i < edges && out.size() < 2; ++i) {
+            const Vec3& p0 = feature.points[i];
+            const Vec3& p1 = feature.points[i + 1 == count ? 0 : i + 1];
+            const Vec2 e0 = planar(p0), d = planar(p1) - e0;
+            const double lengthSquared = d.squaredNorm();
+            if (!(lengthSquared > 0)) continue;
+            const double t = std::clamp((q - e0).dot(d) / lengthSquared, 0.0, 1.0);
+            if ((e0 + t * d - q).squaredNorm() <= toleranceSquared) out.push_back(p1 - p0);
+        }
+    };
+    SmallVector<Vec3, 4> edgesA, edgesB;
+    edgesThrough(a, edgesA);
+    edgesThrough(b, edgesB);
+    for (const Vec3& edgeA : edgesA)
+        for (const Vec3& edgeB : edgesB) {
+            const Vec3 m = edgeA.cross(edgeB);
+            if (certifies(m.dot(normal) < 0 ? Vec3(-m) : m)) return true;
+        }
+    return false;
+}
+
 // Writes the chosen points to the manifold, mapping from the common frame to the world.
 void emit(const LiftedPoints& points, const Vec3& normal, const Pose& commonToWorld, const Settings& settings,
           Manifold& manifold) {
@@ -247,7 +303,7 @@ void emit(const LiftedPoints& points, const Vec3& normal, const Pose& commonToWo
 namespace detail {
 
 Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
-                        const Settings& settings) {
+                        const Settings& settings, bool alwaysConfirmDepth) {
     requireFinite(poseA, "A");
     requireFinite(poseB, "B");
     Manifold manifold;
@@ -322,10 +378,16 @@ Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b,
     // position ± depth/2·n like every contact; it is never a silently missing contact.
     constexpr double kDepthSlack = 0.01;
     double deepest = -INFINITY;
-    for (const LiftedPoint& point : kept) deepest = std::max(deepest, point.depth);
-    if (deepest < normalOverlap - tolerance) {
+    const LiftedPoint* deepestPoint = nullptr;
+    for (const LiftedPoint& point : kept)
+        if (point.depth > deepest) deepest = point.depth, deepestPoint = &point;
+    const double slack = (std::isfinite(deepest) ? kDepthSlack * std::abs(deepest) : 0.0) + tolerance;
+    // The ray cast converges to within its tolerance of the exit: the certificate keeps that much
+    // on the safe side, so that it skips the cast only where the cast could not have added a point.
+    const double certifiedSlack = slack - 2 * settings.rayCastTolerance * size;
+    if (deepest < normalOverlap - tolerance &&
+        !(!alwaysConfirmDepth && deepestPoint && penetrationCertified(*deepestPoint, featureA, featureB, normal, pair, certifiedSlack, tolerance))) {
         const SeparationAlong separation = separationAlong(pair, normal, settings);
-        const double slack = (std::isfinite(deepest) ? kDepthSlack * std::abs(deepest) : 0.0) + tolerance;
         if (kept.empty() && separation.valid && separation.distance < -settings.margin - tolerance)
             return Manifold{};  // apart along n by more than the margin
         if (separation.valid && separation.distance > deepest + slack) {
