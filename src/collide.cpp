@@ -230,10 +230,19 @@ void refineNormal(Vec3& normal, double& normalOverlap, const FeatureGeometry& a,
 // face — B's face normal; B's vertex inside A's face — A's face normal; a crossing of an edge of
 // each — their cross product. At most three candidates, two support searches each, where the ray
 // cast takes dozens on the thin facets that a slightly tilted resting face makes of A − B.
-// Features with caps (several faces) are left to the ray cast.
-bool penetrationCertified(const LiftedPoint& deepest, const FeatureGeometry& a, const FeatureGeometry& b,
+// A feature with a cap (several faces) is represented by the face of it the point was lifted onto.
+// Every direction gives a valid bound, so a wrong guess only costs the ray cast.
+bool penetrationCertified(const LiftedPoint& deepest, const FeatureGeometry& featureA, const FeatureGeometry& featureB,
                           const Vec3& normal, const MinkowskiDifference& pair, double slack, double tolerance) {
-    if (!a.capFaces.empty() || !b.capFaces.empty()) return false;
+    auto pieceOf = [](const FeatureGeometry& feature, int piece) -> const FeatureGeometry* {
+        if (feature.capFaces.empty()) return &feature;
+        return piece >= 0 && piece < static_cast<int>(feature.capFaces.size()) ? &feature.capFaces[piece] : nullptr;
+    };
+    const FeatureGeometry* pieceA = pieceOf(featureA, deepest.pieceA);
+    const FeatureGeometry* pieceB = pieceOf(featureB, deepest.pieceB);
+    if (!pieceA || !pieceB) return false;
+    const FeatureGeometry& a = *pieceA;
+    const FeatureGeometry& b = *pieceB;
     Vec3 u, v;
     planeBasis(normal, u, v);
     const Vec2& q = deepest.planar;

@@ -171,9 +171,9 @@ struct ProjectedPiece {
 // The intersection vertices of two projected pieces, lifted onto both; appended to `out`, skipping
 // points within `tolerance` (in the plane) of one already there when `merge` (pieces of caps
 // share their edges' points).
-void intersectPieces(const ProjectedPiece& a, const ProjectedPiece& b, const Vec3& u, const Vec3& v,
-                     const Vec3& normal, double tolerance, double minimumDepth, bool spanRegion, bool merge,
-                     LiftedPoints& out) {
+void intersectPieces(const ProjectedPiece& a, const ProjectedPiece& b, int pieceA, int pieceB, const Vec3& u,
+                     const Vec3& v, const Vec3& normal, double tolerance, double minimumDepth, bool spanRegion,
+                     bool merge, LiftedPoints& out) {
     Polygon2 region = intersect2d(a.polygon, b.polygon, tolerance);
     // Drop near-duplicate consecutive points produced where edges cross at a vertex.
     const double toleranceSquared = tolerance * tolerance;
@@ -188,7 +188,7 @@ void intersectPieces(const ProjectedPiece& a, const ProjectedPiece& b, const Vec
             for (const LiftedPoint& other : out) known = known || (other.planar - q).squaredNorm() <= toleranceSquared;
             if (known) return;
         }
-        out.push_back({q.x() * u + q.y() * v + 0.5 * (heightA + heightB) * normal, heightA - heightB, q});
+        out.push_back({q.x() * u + q.y() * v + 0.5 * (heightA + heightB) * normal, heightA - heightB, q, pieceA, pieceB});
     };
     // With `spanRegion`: the depth is affine along every edge of the region (both features are flat
     // there), so where an edge runs from contact into a clear gap, the contact region ends where
@@ -222,8 +222,8 @@ LiftedPoints intersectFeatures(const FeatureGeometry& a, const FeatureGeometry& 
     planeBasis(normal, u, v);
     LiftedPoints all;
     if (a.capFaces.empty() && b.capFaces.empty()) {
-        intersectPieces(ProjectedPiece(a, u, v, normal), ProjectedPiece(b, u, v, normal), u, v, normal, tolerance,
-                        minimumDepth, spanRegion, false, all);
+        intersectPieces(ProjectedPiece(a, u, v, normal), ProjectedPiece(b, u, v, normal), 0, 0, u, v, normal,
+                        tolerance, minimumDepth, spanRegion, false, all);
         return all;
     }
     // A cap bends at its inner edges, so its outline alone would miss the deepest point (an inner
@@ -243,10 +243,11 @@ LiftedPoints intersectFeatures(const FeatureGeometry& a, const FeatureGeometry& 
     std::vector<ProjectedPiece> piecesA, piecesB;
     project(a, piecesA);
     project(b, piecesB);
-    for (const ProjectedPiece& pieceA : piecesA)
-        for (const ProjectedPiece& pieceB : piecesB)
-            if (pieceA.boundsMeet(pieceB, tolerance))
-                intersectPieces(pieceA, pieceB, u, v, normal, tolerance, minimumDepth, spanRegion, true, all);
+    for (std::size_t i = 0; i < piecesA.size(); ++i)
+        for (std::size_t j = 0; j < piecesB.size(); ++j)
+            if (piecesA[i].boundsMeet(piecesB[j], tolerance))
+                intersectPieces(piecesA[i], piecesB[j], static_cast<int>(i), static_cast<int>(j), u, v, normal,
+                                tolerance, minimumDepth, spanRegion, true, all);
     return all;
 }
 

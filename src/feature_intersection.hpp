@@ -33,6 +33,10 @@ struct LiftedPoint {
     Vec3 position;   // midway between the two features, in the common frame
     double depth;    // (point on A − point on B)·n: > 0 overlapping
     Vec2 planar;     // coordinates in the contact plane (for reduction)
+    // The faces of the two caps the point was lifted onto (index into capFaces); 0 for a feature
+    // without a cap, −1 for a point that did not come from the intersection.
+    int pieceA = -1;
+    int pieceB = -1;
 };
 
 using LiftedPoints = SmallVector<LiftedPoint, 16>;
