@@ -76,34 +76,24 @@ bool preferNearbyFaceNormal(const MinkowskiDifference& pair, const Feature& feat
     // bound along each side face is its exact overlap, the extent of the bodies, far above it.
     // The bound must clear the limit by `tolerance`, so that rounding (the support search
     // evaluates B in its own frame) cannot turn a skipped candidate into an accepted one.
-    SmallVector<Vec3, 16> pointsA, pointsB;
-    auto featurePoints = [](const Polytope& polytope, const Feature& feature, const Pose* toA,
-                            SmallVector<Vec3, 16>& out) {
-        int storage[2];
-        const int* indices = nullptr;
-        const int count = featureVertices(polytope, feature, &indices, storage);
-        for (int i = 0; i < count; ++i) {
-            const Vec3& vertex = polytope.vertices()[indices[i]];
-            out.push_back(toA ? toA->apply(vertex) : vertex);
-        }
-    };
-    featurePoints(pair.a, featureA, nullptr, pointsA);
-    featurePoints(pair.b, featureB, &pair.bInA, pointsB);
+    int storageA[2], storageB[2];
+    const int* indicesA = nullptr;
+    const int* indicesB = nullptr;
+    const int countA = featureVertices(pair.a, featureA, &indicesA, storageA);
+    const int countB = featureVertices(pair.b, featureB, &indicesB, storageB);
+    SmallVector<Vec3, 16> pointsB;  // B's feature in A's frame
+    for (int i = 0; i < countB; ++i) pointsB.push_back(pair.bInA.apply(pair.b.vertices()[indicesB[i]]));
+    const std::vector<Vec3>& verticesA = pair.a.vertices();
     auto overlapLowerBound = [&](const Vec3& candidate) {
         double highestA = -INFINITY, lowestB = INFINITY;
-        for (const Vec3& p : pointsA) highestA = std::max(highestA, candidate.dot(p));
+        for (int i = 0; i < countA; ++i) highestA = std::max(highestA, candidate.dot(verticesA[indicesA[i]]));
         for (const Vec3& q : pointsB) lowestB = std::min(lowestB, candidate.dot(q));
         return highestA - lowestB;
     };
     bool found = false;
     double bestOverlap = INFINITY, bestCos = -2;
     Vec3 best = normal;
-    // Face indices already tried, per body: a face touches several of the feature's vertices.
-    SmallVector<int, 32> seenA, seenB;
-    auto consider = [&](SmallVector<int, 32>& seen, int face, const Vec3& candidate) {
-        for (int k : seen)
-            if (k == face) return;
-        seen.push_back(face);
+    auto consider = [&](const Vec3& candidate) {
         if (overlapLowerBound(candidate) >= limit + tolerance) return;
         const double overlap = overlapAlong(pair, candidate, normal, current);
         if (!(overlap < limit)) return;
@@ -111,18 +101,29 @@ bool preferNearbyFaceNormal(const MinkowskiDifference& pair, const Feature& feat
         if (!found || overlap < bestOverlap - tolerance || (overlap <= bestOverlap + tolerance && cosine > bestCos))
             found = true, bestOverlap = overlap, bestCos = cosine, best = candidate;
     };
-    auto facesAround = [&](const Polytope& polytope, const Feature& feature, auto&& visit) {
-        int storage[2];
-        const int* indices = nullptr;
-        const int count = featureVertices(polytope, feature, &indices, storage);
+    // The faces around the feature's vertices, each once, in the order the vertices and their face
+    // lists meet them; a face feature has them precomputed (Polytope::faceNeighbourhoods).
+    auto facesAround = [&](const Polytope& polytope, const Feature& feature, const int* indices, int count,
+                           auto&& visit) {
+        if (feature.type == FeatureType::Face) {
+            const int* offsets = polytope.faceNeighbourhoodOffsets().data();
+            const int* faces = polytope.faceNeighbourhoods().data();
+            for (int k = offsets[feature.index], end = offsets[feature.index + 1]; k < end; ++k) visit(faces[k]);
+            return;
+        }
         const int* offsets = polytope.vertexFaceOffsets().data();
         const int* faces = polytope.vertexFaces().data();
         for (int i = 0; i < count; ++i)
-            for (int k = offsets[indices[i]], end = offsets[indices[i] + 1]; k < end; ++k) visit(faces[k]);
+            for (int k = offsets[indices[i]], end = offsets[indices[i] + 1]; k < end; ++k) {
+                bool seen = false;  // an edge's two faces are around both of its ends
+                for (int j = 0; j < i && !seen; ++j)
+                    for (int l = offsets[indices[j]], e = offsets[indices[j] + 1]; l < e; ++l) seen |= faces[l] == faces[k];
+                if (!seen) visit(faces[k]);
+            }
     };
-    facesAround(pair.a, featureA, [&](int face) { consider(seenA, face, pair.a.faces()[face].normal); });
-    facesAround(pair.b, featureB,
-                [&](int face) { consider(seenB, face, -(pair.bInA.rotation * pair.b.faces()[face].normal)); });
+    facesAround(pair.a, featureA, indicesA, countA, [&](int face) { consider(pair.a.faces()[face].normal); });
+    facesAround(pair.b, featureB, indicesB, countB,
+                [&](int face) { consider(-(pair.bInA.rotation * pair.b.faces()[face].normal)); });
     if (!found) return false;
     normal = best;
     normalOverlap = bestOverlap;

@@ -280,6 +280,21 @@ void Polytope::buildTopology(double size) {
         neighborOffsets_.push_back(static_cast<int>(neighbors_.size()));
         vertexFaceOffsets_.push_back(static_cast<int>(vertexFaces_.size()));
     }
+    // Each face's neighbourhood: the faces sharing a vertex with it, each once, in the order the
+    // face's loop and each vertex's face list meet them (the overhang check's candidates).
+    faceNeighbourhoodOffsets_.assign(1, 0);
+    faceNeighbourhoods_.clear();
+    for (const Face& face : faces_) {
+        const std::size_t begin = faceNeighbourhoods_.size();
+        for (int i = 0; i < face.count; ++i) {
+            const int v = faceVertices_[face.first + i];
+            for (int k = vertexFaceOffsets_[v]; k < vertexFaceOffsets_[v + 1]; ++k)
+                if (std::find(faceNeighbourhoods_.begin() + begin, faceNeighbourhoods_.end(), vertexFaces_[k]) ==
+                    faceNeighbourhoods_.end())
+                    faceNeighbourhoods_.push_back(vertexFaces_[k]);
+        }
+        faceNeighbourhoodOffsets_.push_back(static_cast<int>(faceNeighbourhoods_.size()));
+    }
     for (Face& face : faces_) {
         face.nearestNeighbourCosine = -1;
         for (int i = 0; i < face.count; ++i) {

@@ -58,6 +58,10 @@ public:
     /// Edges around vertex v: vertexEdges()[vertexFaceOffsets()[v] .. vertexFaceOffsets()[v+1])
     /// (a vertex of a closed polytope has as many edges as faces).
     const std::vector<int>& vertexEdges() const { return vertexEdges_; }
+    /// Faces sharing a vertex with face f, each once (f among them):
+    /// faceNeighbourhoods()[faceNeighbourhoodOffsets()[f] .. faceNeighbourhoodOffsets()[f+1]).
+    const std::vector<int>& faceNeighbourhoodOffsets() const { return faceNeighbourhoodOffsets_; }
+    const std::vector<int>& faceNeighbourhoods() const { return faceNeighbourhoods_; }
 
     /// Volume centroid: the contraction point of the growth distance (always interior).
     const Vec3& centroid() const { return centroid_; }
@@ -85,6 +89,7 @@ private:
     std::vector<Edge> edges_;
     std::vector<int> neighborOffsets_, neighbors_;
     std::vector<int> vertexFaceOffsets_, vertexFaces_, vertexEdges_;
+    std::vector<int> faceNeighbourhoodOffsets_, faceNeighbourhoods_;
     std::vector<int> supportSeeds_;  // hill-climbing starts: supports of 26 fixed directions
     Vec3 centroid_ = Vec3::Zero();
     double radius_ = 0.0;
