@@ -10,6 +10,7 @@
 #endif
 
 #include <array>
+#include <map>
 #include <memory>
 
 namespace gdcbench {
@@ -229,8 +230,13 @@ struct SweepPoses {
     std::vector<Pose> a, b, onPlane;
 };
 
-SweepPoses sweepPoses(int size) {
-    SweepPoses s;
+/// The poses of one size, computed once (the hull–hull and hull–plane cases share them; placing
+/// the big hulls by bisection takes a while).
+const SweepPoses& sweepPoses(int size) {
+    static std::map<int, SweepPoses> cache;
+    auto found = cache.find(size);
+    if (found != cache.end()) return found->second;
+    SweepPoses& s = cache[size];
     s.points = sweepHullPoints(size);
     for (const auto& [a, b] : touchingPoses(s.points, s.points, kPosesPerCase, kRestingOverlap, kSeed + size))
         s.a.push_back(a), s.b.push_back(b);
@@ -244,11 +250,11 @@ SweepPoses sweepPoses(int size) {
         pose.position = ground.normal * (ground.offset - lowest - kRestingOverlap);
         s.onPlane.push_back(pose);
     }
-    return s;
+    return s;  // a reference into the cache: std::map never moves its elements
 }
 
 std::vector<PairContender> hullPairContenders(int size) {
-    const SweepPoses s = sweepPoses(size);
+    const SweepPoses& s = sweepPoses(size);
     auto hull = std::make_shared<gdc::Polytope>(gdc::Polytope::fromPoints(s.points));
     const int m = gdc::Settings{}.maxContacts;
     std::vector<PairContender> out;
@@ -269,7 +275,7 @@ std::vector<PairContender> hullPairContenders(int size) {
 }
 
 std::vector<PairContender> hullPlaneContenders(int size) {
-    const SweepPoses s = sweepPoses(size);
+    const SweepPoses& s = sweepPoses(size);
     auto hull = std::make_shared<gdc::Polytope>(gdc::Polytope::fromPoints(s.points));
     const gdc::HalfSpace ground = groundPlane();
     const int m = gdc::Settings{}.maxContacts;
