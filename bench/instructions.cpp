@@ -4,10 +4,13 @@
 // family/case/contender. Instruction counts are stable where time on a busy machine is not.
 //
 //   valgrind --tool=callgrind --collect-atstart=no --callgrind-out-file=DIR/callgrind.out
-//            bench_instructions [--cycles N] [--big-cycles N] [--manifest FILE.csv] [FILTER...]
+//            bench_instructions [--cycles N] [--big-cycles N] [--others-up-to N] [--manifest FILE.csv]
+//                               [FILTER...]
 //
 // bench/callgrind_counts.py runs this and turns the dumps into instructions per call (CSV).
-// FILTER: only the cases whose family/case starts with one of these prefixes. Without valgrind the
+// FILTER: only the cases whose family/case starts with one of these prefixes. --others-up-to N:
+// ODE's and Bullet's contenders only for hulls of at most N vertices (default 1024; building their
+// shapes for 4096 vertices takes minutes under callgrind). Without valgrind the
 // client requests do nothing (the run then only checks that every case builds and runs).
 #include "ode_shapes.hpp"
 #include "pair_cases.hpp"
@@ -50,7 +53,7 @@ bool wanted(const std::string& caseName, const std::vector<std::string>& filters
 
 int main(int argc, char** argv) {
     using namespace gdcbench;
-    int cycles = 20, bigCycles = 2;
+    int cycles = 20, bigCycles = 2, othersUpTo = 1024;
     std::string manifest;
     std::vector<std::string> filters;
     for (int i = 1; i < argc; ++i) {
@@ -59,12 +62,15 @@ int main(int argc, char** argv) {
             cycles = std::stoi(argv[++i]);
         } else if (arg == "--big-cycles" && i + 1 < argc) {
             bigCycles = std::stoi(argv[++i]);
+        } else if (arg == "--others-up-to" && i + 1 < argc) {
+            othersUpTo = std::stoi(argv[++i]);
         } else if (arg == "--manifest" && i + 1 < argc) {
             manifest = argv[++i];
         } else if (!arg.empty() && arg[0] != '-') {
             filters.push_back(arg);
         } else {
-            std::cerr << "usage: bench_instructions [--cycles N] [--big-cycles N] [--manifest FILE.csv] [FILTER...]\n";
+            std::cerr << "usage: bench_instructions [--cycles N] [--big-cycles N] [--others-up-to N]"
+                         " [--manifest FILE.csv] [FILTER...]\n";
             return 2;
         }
     }
@@ -83,7 +89,10 @@ int main(int argc, char** argv) {
         if (!wanted(set.name(), filters)) continue;
         const bool sweep = set.family == "hull_hull" || set.family == "hull_plane";
         const int size = sweep ? std::stoi(set.caseName) : 8;
-        const std::vector<PairContender> contenders = set.make();
+        const ContenderFilter filter = [&](const std::string& name) {
+            return size <= othersUpTo || name.compare(0, 9, "gdcontact") == 0;
+        };
+        const std::vector<PairContender> contenders = set.make(filter);
         for (const PairContender& c : contenders) {
             const int n = size >= kBigHull || (c.name == "bullet_sat_clip" && size > 8) ? bigCycles : cycles;
             const int contacts = measure(set.name() + "/" + c.name, c, set.poseCount, n);

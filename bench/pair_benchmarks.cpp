@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
     for (const PairCaseSet& set : pairCaseSets()) {
         std::vector<std::shared_ptr<const PairContender>> contenders;
-        for (PairContender& c : set.make()) contenders.push_back(std::make_shared<const PairContender>(std::move(c)));
+        for (PairContender& c : set.make({})) contenders.push_back(std::make_shared<const PairContender>(std::move(c)));
         for (int round = 0; round < rounds; ++round)
             for (const auto& c : contenders) registerPair(set.name() + "/" + c->name, set.poseCount, c);
     }

@@ -126,6 +126,17 @@ std::function<int(int)> odePair(Geoms a, Geoms b, OdeCollider collider, int maxC
     };
 }
 
+/// The contenders of a case, each built only if the filter wants it (so that a driver measuring
+/// one contender does not pay for the others' set-up).
+struct Contenders {
+    const ContenderFilter& want;
+    std::vector<PairContender> list;
+    template <class Make>
+    void add(std::string name, Make make) {
+        if (!want || want(name)) list.push_back({std::move(name), make()});
+    }
+};
+
 using BulletPoses = std::vector<std::pair<btTransform, btTransform>>;
 BulletPoses bulletPoses(const std::vector<Pose>& a, const std::vector<Pose>& b) {
     BulletPoses out;
@@ -156,13 +167,9 @@ void cubePairPoses(const PairCase& c, int count, std::uint64_t seed, std::vector
     }
 }
 
-std::vector<PairContender> cubePairContenders(const PairCase& c, bool flat) {
-    const int count = flat ? 1 : kPosesPerCase;
-    std::vector<Pose> posesA, posesB;
-    if (flat)
-        posesA = {c.poseA}, posesB = {c.poseB};
-    else
-        cubePairPoses(c, count, seedOf(c.name), posesA, posesB);
+std::vector<PairContender> cubePairContenders(const PairCase& c, bool flat, const ContenderFilter& want) {
+    std::vector<Pose> posesA{c.poseA}, posesB{c.poseB};
+    if (!flat) cubePairPoses(c, kPosesPerCase, seedOf(c.name), posesA, posesB);
     auto cube = std::make_shared<gdc::Polytope>(gdc::Polytope::box(Vec3::Constant(kCubeHalfExtent)));
     const std::vector<Vec3> corners = boxVertices(Vec3::Constant(kCubeHalfExtent));
     auto cubeHull = std::make_shared<gdc::Polytope>(gdc::Polytope::fromPoints(corners));
@@ -170,38 +177,45 @@ std::vector<PairContender> cubePairContenders(const PairCase& c, bool flat) {
     const int m = c.maxContacts;
 
     // Interleaved: each ODE collider next to gdcontact's answer to it.
-    std::vector<PairContender> out;
-    out.push_back({"ode_dBoxBox", odePair(odeBoxes(posesA), odeBoxes(posesB), nativeCollide, m)});
+    Contenders out{want, {}};
+    out.add("ode_dBoxBox", [&] { return odePair(odeBoxes(posesA), odeBoxes(posesB), nativeCollide, m); });
 #ifdef GDCONTACT_BENCH_ODE_ADAPTER
-    out.push_back({"gdcontact_ode_box", odePair(odeBoxes(posesA), odeBoxes(posesB), adapterCollide, m)});
+    out.add("gdcontact_ode_box", [&] { return odePair(odeBoxes(posesA), odeBoxes(posesB), adapterCollide, m); });
 #endif
     if (!flat)
-        out.push_back({"gdcontact", [cube, posesA, posesB, settings](int i) {
-                           return gdc::collide(*cube, posesA[i], *cube, posesB[i], settings).pointCount;
-                       }});
-    out.push_back({"ode_convex_ccd",
-                   odePair(odeConvexes(*cubeHull, posesA), odeConvexes(*cubeHull, posesB), nativeCollide, m)});
+        out.add("gdcontact", [&] {
+            return [cube, posesA, posesB, settings](int i) {
+                return gdc::collide(*cube, posesA[i], *cube, posesB[i], settings).pointCount;
+            };
+        });
+    out.add("ode_convex_ccd", [&] {
+        return odePair(odeConvexes(*cubeHull, posesA), odeConvexes(*cubeHull, posesB), nativeCollide, m);
+    });
 #ifdef GDCONTACT_BENCH_ODE_ADAPTER
-    out.push_back({"gdcontact_ode_hull8",
-                   odePair(adapterConvexes(corners, posesA), adapterConvexes(corners, posesB), adapterCollide, m)});
+    out.add("gdcontact_ode_hull8", [&] {
+        return odePair(adapterConvexes(corners, posesA), adapterConvexes(corners, posesB), adapterCollide, m);
+    });
 #endif
-    if (flat) return out;
-    out.push_back({"gdcontact_hull8", [cubeHull, posesA, posesB, settings](int i) {
-                       return gdc::collide(*cubeHull, posesA[i], *cubeHull, posesB[i], settings).pointCount;
-                   }});
+    if (flat) return std::move(out.list);
+    out.add("gdcontact_hull8", [&] {
+        return [cubeHull, posesA, posesB, settings](int i) {
+            return gdc::collide(*cubeHull, posesA[i], *cubeHull, posesB[i], settings).pointCount;
+        };
+    });
     const BulletPoses bullet = bulletPoses(posesA, posesB);
     std::shared_ptr<btBoxShape> bulletBox = makeBulletBox(Vec3::Constant(kCubeHalfExtent));
-    std::shared_ptr<btConvexHullShape> bulletHull = makeBulletHull(corners);
-    out.push_back({"bullet_boxbox", bulletPair(bulletBox, bullet, bulletBoxBox)});
-    out.push_back({"bullet_gjk_epa", bulletPair(bulletHull, bullet, bulletGjkEpa)});
-    out.push_back({"bullet_gjk_clip", bulletPair(bulletHull, bullet, bulletGjkClip)});
-    out.push_back({"bullet_sat_clip", bulletPair(bulletHull, bullet, bulletSatClip)});
-    return out;
+    std::shared_ptr<btConvexHullShape> bulletHull = makeBulletHull(corners);  // cheap at 8 vertices
+    out.add("bullet_boxbox", [&] { return bulletPair(bulletBox, bullet, bulletBoxBox); });
+    out.add("bullet_gjk_epa", [&] { return bulletPair(bulletHull, bullet, bulletGjkEpa); });
+    out.add("bullet_gjk_clip", [&] { return bulletPair(bulletHull, bullet, bulletGjkClip); });
+    out.add("bullet_sat_clip", [&] { return bulletPair(bulletHull, bullet, bulletSatClip); });
+    return std::move(out.list);
 }
 
 /// A cube on the ground plane as a box (box_plane) or as an 8-vertex hull (convex_plane).
-std::vector<PairContender> cubePlaneContenders(const PlaneCase& c, bool asHull, bool flat) {
-    std::vector<Pose> poses =
+std::vector<PairContender> cubePlaneContenders(const PlaneCase& c, bool asHull, bool flat,
+                                               const ContenderFilter& want) {
+    const std::vector<Pose> poses =
         flat ? std::vector<Pose>{c.pose} : jitteredPoses(c.pose, kPosesPerCase, seedOf(c.name));
     const std::vector<Vec3> corners = boxVertices(Vec3::Constant(kCubeHalfExtent));
     auto shape = std::make_shared<gdc::Polytope>(asHull ? gdc::Polytope::fromPoints(corners)
@@ -210,17 +224,22 @@ std::vector<PairContender> cubePlaneContenders(const PlaneCase& c, bool asHull, 
     const gdc::HalfSpace plane = c.plane;
     const int m = c.maxContacts;
     Geoms ground = odePlane();
-    std::vector<PairContender> out;
-    out.push_back({"ode", odePair(asHull ? odeConvexes(*shape, poses) : odeBoxes(poses), ground, nativeCollide, m)});
+    Contenders out{want, {}};
+    out.add("ode", [&] {
+        return odePair(asHull ? odeConvexes(*shape, poses) : odeBoxes(poses), ground, nativeCollide, m);
+    });
 #ifdef GDCONTACT_BENCH_ODE_ADAPTER
-    out.push_back(
-        {"gdcontact_ode", odePair(asHull ? adapterConvexes(corners, poses) : odeBoxes(poses), ground, adapterCollide, m)});
+    out.add("gdcontact_ode", [&] {
+        return odePair(asHull ? adapterConvexes(corners, poses) : odeBoxes(poses), ground, adapterCollide, m);
+    });
 #endif
     if (!flat)
-        out.push_back({"gdcontact", [shape, poses, plane, settings](int i) {
-                           return gdc::collide(*shape, poses[i], plane, settings).pointCount;
-                       }});
-    return out;
+        out.add("gdcontact", [&] {
+            return [shape, poses, plane, settings](int i) {
+                return gdc::collide(*shape, poses[i], plane, settings).pointCount;
+            };
+        });
+    return std::move(out.list);
 }
 
 /// The hull size sweep: 16 random touching relative poses of two equal near-spheres (and of the
@@ -253,42 +272,51 @@ const SweepPoses& sweepPoses(int size) {
     return s;  // a reference into the cache: std::map never moves its elements
 }
 
-std::vector<PairContender> hullPairContenders(int size) {
+std::vector<PairContender> hullPairContenders(int size, const ContenderFilter& want) {
     const SweepPoses& s = sweepPoses(size);
     auto hull = std::make_shared<gdc::Polytope>(gdc::Polytope::fromPoints(s.points));
     const int m = gdc::Settings{}.maxContacts;
-    std::vector<PairContender> out;
-    out.push_back({"ode_convex_ccd", odePair(odeConvexes(*hull, s.a), odeConvexes(*hull, s.b), nativeCollide, m)});
+    Contenders out{want, {}};
+    out.add("ode_convex_ccd",
+            [&] { return odePair(odeConvexes(*hull, s.a), odeConvexes(*hull, s.b), nativeCollide, m); });
 #ifdef GDCONTACT_BENCH_ODE_ADAPTER
-    out.push_back(
-        {"gdcontact_ode", odePair(adapterConvexes(s.points, s.a), adapterConvexes(s.points, s.b), adapterCollide, m)});
+    out.add("gdcontact_ode", [&] {
+        return odePair(adapterConvexes(s.points, s.a), adapterConvexes(s.points, s.b), adapterCollide, m);
+    });
 #endif
-    out.push_back({"gdcontact", [hull, a = s.a, b = s.b](int i) { return gdc::collide(*hull, a[i], *hull, b[i]).pointCount; }});
-    std::shared_ptr<btConvexHullShape> bulletHull = makeBulletHull(s.points);
+    out.add("gdcontact", [&] {
+        return [hull, a = s.a, b = s.b](int i) { return gdc::collide(*hull, a[i], *hull, b[i]).pointCount; };
+    });
+    // Bullet's hull (its polyhedral features take a while for big hulls) only if a contender needs it.
+    std::shared_ptr<btConvexHullShape> bulletHullStorage;
+    auto bulletHull = [&] {
+        if (!bulletHullStorage) bulletHullStorage = makeBulletHull(s.points);
+        return bulletHullStorage;
+    };
     const BulletPoses bullet = bulletPoses(s.a, s.b);
-    out.push_back({"bullet_gjk_epa", bulletPair(bulletHull, bullet, bulletGjkEpa)});
-    out.push_back({"bullet_gjk_clip", bulletPair(bulletHull, bullet, bulletGjkClip)});
+    out.add("bullet_gjk_epa", [&] { return bulletPair(bulletHull(), bullet, bulletGjkEpa); });
+    out.add("bullet_gjk_clip", [&] { return bulletPair(bulletHull(), bullet, bulletGjkClip); });
     // Bullet's SAT tries every edge pair, each projected on every vertex: O(E²·V). Beyond 64
     // vertices a single call would take longer than the whole sweep may.
-    if (size <= 64) out.push_back({"bullet_sat_clip", bulletPair(bulletHull, bullet, bulletSatClip)});
-    return out;
+    if (size <= 64) out.add("bullet_sat_clip", [&] { return bulletPair(bulletHull(), bullet, bulletSatClip); });
+    return std::move(out.list);
 }
 
-std::vector<PairContender> hullPlaneContenders(int size) {
+std::vector<PairContender> hullPlaneContenders(int size, const ContenderFilter& want) {
     const SweepPoses& s = sweepPoses(size);
     auto hull = std::make_shared<gdc::Polytope>(gdc::Polytope::fromPoints(s.points));
     const gdc::HalfSpace ground = groundPlane();
     const int m = gdc::Settings{}.maxContacts;
     Geoms plane = odePlane();
-    std::vector<PairContender> out;
-    out.push_back({"ode", odePair(odeConvexes(*hull, s.onPlane), plane, nativeCollide, m)});
+    Contenders out{want, {}};
+    out.add("ode", [&] { return odePair(odeConvexes(*hull, s.onPlane), plane, nativeCollide, m); });
 #ifdef GDCONTACT_BENCH_ODE_ADAPTER
-    out.push_back({"gdcontact_ode", odePair(adapterConvexes(s.points, s.onPlane), plane, adapterCollide, m)});
+    out.add("gdcontact_ode", [&] { return odePair(adapterConvexes(s.points, s.onPlane), plane, adapterCollide, m); });
 #endif
-    out.push_back({"gdcontact", [hull, poses = s.onPlane, ground](int i) {
-                       return gdc::collide(*hull, poses[i], ground).pointCount;
-                   }});
-    return out;
+    out.add("gdcontact", [&] {
+        return [hull, poses = s.onPlane, ground](int i) { return gdc::collide(*hull, poses[i], ground).pointCount; };
+    });
+    return std::move(out.list);
 }
 
 }  // namespace
@@ -307,25 +335,31 @@ std::vector<Pose> jitteredPoses(const Pose& canonical, int count, std::uint64_t 
 }
 
 std::vector<PairCaseSet> pairCaseSets() {
+    using Filter = const ContenderFilter&;
     std::vector<PairCaseSet> sets;
     for (const PairCase& c : cubePairCases())
-        sets.push_back({"box_box", c.name, kPosesPerCase, [c] { return cubePairContenders(c, false); }});
+        sets.push_back({"box_box", c.name, kPosesPerCase, [c](Filter f) { return cubePairContenders(c, false, f); }});
     for (const PlaneCase& c : cubePlaneCases()) {
-        sets.push_back({"box_plane", c.name, kPosesPerCase, [c] { return cubePlaneContenders(c, false, false); }});
-        sets.push_back({"convex_plane", c.name, kPosesPerCase, [c] { return cubePlaneContenders(c, true, false); }});
+        sets.push_back({"box_plane", c.name, kPosesPerCase,
+                        [c](Filter f) { return cubePlaneContenders(c, false, false, f); }});
+        sets.push_back({"convex_plane", c.name, kPosesPerCase,
+                        [c](Filter f) { return cubePlaneContenders(c, true, false, f); }});
     }
     for (int size : hullSizes()) {
-        sets.push_back({"hull_hull", std::to_string(size), kPosesPerCase, [size] { return hullPairContenders(size); }});
-        sets.push_back({"hull_plane", std::to_string(size), kPosesPerCase, [size] { return hullPlaneContenders(size); }});
+        const std::string n = std::to_string(size);
+        sets.push_back({"hull_hull", n, kPosesPerCase, [size](Filter f) { return hullPairContenders(size, f); }});
+        sets.push_back({"hull_plane", n, kPosesPerCase, [size](Filter f) { return hullPlaneContenders(size, f); }});
     }
     // The single exactly flat pose of the target cases (secondary: it flatters every collider).
     for (const PairCase& c : cubePairCases())
         if (c.name != "vertex_face" && c.name != "deep_overlap")
-            sets.push_back({"box_box_flat", c.name, 1, [c] { return cubePairContenders(c, true); }});
+            sets.push_back({"box_box_flat", c.name, 1, [c](Filter f) { return cubePairContenders(c, true, f); }});
     for (const PlaneCase& c : cubePlaneCases())
         if (c.name == "face") {
-            sets.push_back({"box_plane_flat", c.name, 1, [c] { return cubePlaneContenders(c, false, true); }});
-            sets.push_back({"convex_plane_flat", c.name, 1, [c] { return cubePlaneContenders(c, true, true); }});
+            sets.push_back({"box_plane_flat", c.name, 1,
+                            [c](Filter f) { return cubePlaneContenders(c, false, true, f); }});
+            sets.push_back({"convex_plane_flat", c.name, 1,
+                            [c](Filter f) { return cubePlaneContenders(c, true, true, f); }});
         }
     return sets;
 }

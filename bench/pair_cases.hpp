@@ -31,12 +31,15 @@ struct PairContender {
     std::function<int(int)> collide;
 };
 
+/// Which contenders (by name) to build; an empty filter builds them all.
+using ContenderFilter = std::function<bool(const std::string&)>;
+
 struct PairCaseSet {
     std::string family, caseName;
     int poseCount = 1;
-    /// Builds the shapes, geoms and poses of every contender (ODE must be initialised, and stay so
-    /// while the returned contenders live).
-    std::function<std::vector<PairContender>()> make;
+    /// Builds the shapes, geoms and poses of every contender the filter wants (ODE must be
+    /// initialised, and stay so while the returned contenders live).
+    std::function<std::vector<PairContender>(const ContenderFilter&)> make;
     std::string name() const { return family + "/" + caseName; }
 };
 

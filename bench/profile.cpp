@@ -17,7 +17,10 @@ int main(int argc, char** argv) {
     for (const PairCaseSet& set : pairCaseSets()) {
         const std::string prefix = set.name() + "/";
         if (wanted != "--list" && wanted.compare(0, prefix.size(), prefix) != 0) continue;
-        for (const PairContender& c : set.make()) {
+        const ContenderFilter only = [&](const std::string& name) {
+            return wanted == "--list" || prefix + name == wanted;
+        };
+        for (const PairContender& c : set.make(only)) {
             if (wanted == "--list") {
                 std::cout << prefix << c.name << '\n';
                 continue;

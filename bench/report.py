@@ -475,7 +475,7 @@ def plot_pairs(pairs, path):
     ax.set_xticklabels([c.replace("_", " ") for c in PAIR_CASES])
     ax.set_yscale("log")
     ax.set_ylabel("CPU ns per call (median)")
-    ax.set_title("Cube pair, canonical configurations")
+    ax.set_title("Cube pair, 16 jittered poses per configuration")
     ax.legend(fontsize=7, ncol=2)
     save_figure(fig, path)
 
