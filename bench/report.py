@@ -295,11 +295,17 @@ def plane_section(pairs, instructions, suffix=""):
     return times, instruction_table(merged_instr, "plane", cases, PLANE_ORDER, lambda k: (k[0], "ode"), PLANE_LABELS.get)
 
 
-def flat_section(pairs):
-    """The single exactly flat pose (secondary figures)."""
+def flat_section(pairs, instructions):
+    """The single exactly flat pose (secondary figures): times, planes, instructions of both."""
     cases = [c for c in PAIR_CASES if any(k[0] == "box_box_flat" and k[1] == c for k in pairs)]
     cubes = case_table(pairs, {}, "box_box_flat", cases, PAIR_ORDER, PAIR_REFERENCE.get, PAIR_LABELS.get)
-    return cubes, plane_section(pairs, {}, suffix="_flat")
+    cube_instructions = instruction_table(instructions, "box_box_flat", cases, PAIR_ORDER, PAIR_REFERENCE.get,
+                                          PAIR_LABELS.get)
+    planes = {("plane", case, (family[: -len("_flat")], key)): v for (family, case, key), v in instructions.items()
+              if family in ("box_plane_flat", "convex_plane_flat")}
+    plane_instructions = instruction_table(planes, "plane", ["face"], PLANE_ORDER, lambda k: (k[0], "ode"),
+                                           PLANE_LABELS.get)
+    return cubes, plane_section(pairs, {}, suffix="_flat"), cube_instructions, plane_instructions
 
 
 def sizes_of(pairs):
@@ -325,7 +331,8 @@ def size_section(pairs, instructions):
             x0 = instructions.get((family, str(sizes[0]), key), float("nan"))
             instruction_cells.append(fmt_instr(x) + (f" ×{x / x0:.1f}" if n != sizes[0] and x == x and x0 == x0 else ""))
         rows.append(cells)
-        instruction_rows.append(instruction_cells)
+        if any(c != "–" for c in instruction_cells[1:]):
+            instruction_rows.append(instruction_cells)
     return table(header, rows), table(header, instruction_rows)
 
 
@@ -406,10 +413,10 @@ def scenes_section(scenes):
                      f"{num(s.get('broad_phase_ms')):.2f}", f"{num(s['solver_ms']):.2f}",
                      f"{100 * num(s['collision_fraction']):.0f} %",
                      f"{num(s['contacts_per_step']):.0f}", f"{num(s['max_displacement_m']):.3f}",
-                     f"{num(s.get('settled_motion_m')):.3f}"])
+                     f"{s.get('moving_bodies', '?')} / {num(s.get('settled_motion_m')):.3f}"])
     return table(["scene", "collider", "bodies", "steps (settle + measured)", "ms per step, median [quartiles]",
                   "collision ms, median [quartiles]", "of which broad phase", "solver ms", "collision share",
-                  "contacts per step", "largest body displacement, m", "largest motion while measured, m"], rows)
+                  "contacts per step", "largest body displacement, m", "while measured: bodies moving > 1 cm / farthest, m"], rows)
 
 
 def parse_profile(path):
@@ -600,7 +607,7 @@ def main():
     profiles = profile_section(args.results)
     plane_times, plane_instructions = plane_section(pairs, instructions)
     size_times, size_instructions = size_section(pairs, instructions)
-    flat_cubes, flat_planes = flat_section(pairs)
+    flat_cubes, flat_planes, flat_cube_instructions, flat_plane_instructions = flat_section(pairs, instructions)
 
     quick_note = ("\n> **Quick trial run** (`scripts/bench --quick`): short timings, few samples. "
                   "Not the committed numbers.\n" if machine.get("quick") == "1" else "")
@@ -684,7 +691,8 @@ left out above 64 vertices (it tests every edge pair: seconds per call).
 
 {size_times}
 
-Instructions per call (callgrind; hulls of 1024 vertices and more over fewer cycles), ×growth over the 8-vertex hull:
+Instructions per call (callgrind; hulls of 256 vertices and more, and Bullet's SAT, over fewer cycles; ODE and Bullet
+up to 1024 vertices, whose shapes take minutes to build under callgrind beyond), ×growth over the 8-vertex hull:
 
 {size_instructions}
 
@@ -698,6 +706,12 @@ every collider (branch prediction, and on a flat face some work never runs); the
 {flat_cubes}
 
 {flat_planes}
+
+Instructions per call on the flat pose (compare with the cycled poses above):
+
+{flat_cube_instructions}
+
+{flat_plane_instructions}
 
 ## Where the time goes
 
@@ -750,8 +764,9 @@ figures are the **median over the measured steps** [25th–75th percentile]. Col
 collider, contact joints); solver = `dWorldQuickStep` and emptying the contact group; "of which broad phase" is
 `dSpaceCollide` with an empty near callback, timed separately (an estimate of the part no narrow-phase collider can save).
 Brick wall: 20 × 10 bricks of 0.40 × 0.20 × 0.13 m, rows offset by a quarter brick. Box pile: 1000 boxes of
-0.40 × 0.30 × 0.20 m dropped in ten layers, each turned at random and tilted by up to 0.1 rad, into a 5.6 m walled bin
-(dBox worlds both: ODE's dBoxBox and gdcontact see the same shapes). Pyramid: 15 rows of 0.5 m cubes (120). Hull pile:
+0.40 × 0.30 × 0.20 m dropped 2 cm in ten layers of 10 × 10 into a 5.1 m walled bin, every other layer shifted by half a
+cell so that its boxes land across the gaps below, each box turned by up to ±0.15 rad and tilted by up to ±0.02 rad
+(brick wall and box pile are dBox worlds: ODE's dBoxBox and gdcontact see the same shapes). Pyramid: 15 rows of 0.5 m cubes (120). Hull pile:
 1000 hulls of six kinds (8–32 vertices, ~0.3 m) dropped in a 4.4 m walled bin (ODE's own dConvex for the native run).
 The displacement columns show whether the structures stood (a collapsed wall would be cheap for the wrong reason) and
 how far anything still moved while measured.
