@@ -134,7 +134,8 @@ def load_pairs(path):
     for b in data["benchmarks"]:
         if b.get("run_type") == "aggregate":
             continue
-        parts = b.get("run_name", b["name"]).split("/")
+        # family/case/contender, then "iterations:N" (bench_pairs fixes the iteration count).
+        parts = [p for p in b.get("run_name", b["name"]).split("/") if ":" not in p]
         if len(parts) != 3:
             continue
         scale = {"ns": 1.0, "us": 1e3, "ms": 1e6, "s": 1e9}[b.get("time_unit", "ns")]
