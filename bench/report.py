@@ -376,7 +376,8 @@ def targets_section(pairs, instructions, scenes):
                  f"{num(o['collision_ms']):.2f} ms [{num(o.get('collision_ms_p25')):.2f}–{num(o.get('collision_ms_p75')):.2f}]")
         step = f"whole step {num(g['step_ms']):.2f} vs {num(o['step_ms']):.2f} ms"
         rows.append([label, "≤ 1", f"**{fmt(r)}**", times, step, verdict(r, 1.0), obstacle(target_id, r, 1.0)])
-    return table(["target (issue 11)", "goal", "measured ratio", "time, gdcontact vs reference: median [min–max]",
+    return table(["target (issue 11)", "goal", "measured ratio",
+                  "time, gdcontact vs reference: median [min–max of the rounds; scenes: quartiles of the steps]",
                   "instructions per call, gdcontact vs reference; others", "verdict", "what stands in the way"], rows)
 
 
