@@ -3,18 +3,24 @@
 // for gdcontact (its ODE adapter called from the near callback) and for ODE's native colliders on
 // the same bodies, shapes and initial poses:
 //   brick_wall — 20 × 10 bricks, rows offset by a quarter brick, on a plane (box–box, box–plane);
+//   box_pile   — 1000 boxes dropped 2 cm in ten layers into a walled bin, each layer across the gaps of
+//                the one below, left to settle (box–box, box–plane);
 //   pyramid    — 15 rows of cubes, 120 boxes (box–box, box–plane);
 //   hull_pile  — 1000 mixed convex hulls (8 to 32 vertices) dropped into a walled bin
 //                (convex–convex, convex–box, convex–plane).
-// Each scene runs `steps` steps of 1/60 s; it reports mean CPU milliseconds per step and the share
-// spent in collision, plus contacts per step and how far the bodies moved (so that a scene that
-// collapsed with one collider is not mistaken for a cheaper one). Writes CSV for scripts/bench.
+// The first box worlds are dBox worlds: ODE's exact dBoxBox and gdcontact see the same shapes.
+// Each scene runs `settle` steps of 1/60 s unmeasured, then `steps` measured steps; it reports the
+// median (and quartiles) over the measured steps of the CPU milliseconds of collision and of the
+// whole step, plus contacts per step and how far the bodies moved (so that a scene that collapsed
+// with one collider is not mistaken for a cheaper one). Writes CSV for scripts/bench.
 #include "fixtures.hpp"
 #include "ode_shapes.hpp"
 
 #include <gdcontact/ode.hpp>
 #include <gdcontact/polytope.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -130,6 +136,38 @@ void pyramid(World& w) {
     }
 }
 
+/// A walled bin of inner half width `half` on the ground (static boxes, no bodies).
+void addBin(World& w, double half) {
+    for (int side = 0; side < 4; ++side) {
+        const Vec3 centre = side < 2 ? Vec3((side ? 1 : -1) * (half + 0.1), 0, 2.5) : Vec3(0, (side == 3 ? 1 : -1) * (half + 0.1), 2.5);
+        const Vec3 extents = side < 2 ? Vec3(0.1, half + 0.2, 2.5) : Vec3(half + 0.2, 0.1, 2.5);
+        w.addStaticBox(extents, centre);
+    }
+}
+
+void boxPile(World& w) {
+    dCreatePlane(w.space, 0, 0, 1, 0);
+    const Vec3 box(0.2, 0.15, 0.1);     // 0.40 × 0.30 × 0.20 m
+    const double dx = 0.45, dy = 0.36;  // grid spacing: gaps of a few cm at any of the turns below
+    addBin(w, 2.55);
+    Random random(1000);
+    int made = 0;
+    for (int layer = 0; made < 1000; ++layer) {
+        // Every other layer shifted by half a cell, so that its boxes land across the gaps of the
+        // layer below, each on two to four boxes: a heap with most pairs resting face on face.
+        const double shift = (layer % 2) ? 0.5 : 0.0;
+        for (int i = 0; i < 10 && made < 1000; ++i)
+            for (int j = 0; j < 10 && made < 1000; ++j, ++made) {
+                // A small random turn about the vertical and tilt: no two faces exactly parallel.
+                const Mat3 turn = rotation(Vec3::UnitZ(), random.uniform(-0.15, 0.15)) *
+                                  rotation(random.unitVector(), random.uniform(-0.02, 0.02));
+                const Vec3 centre((i - 4.5 + shift) * dx, (j - 4.5 + shift) * dy,
+                                  box.z() + 0.01 + layer * (2 * box.z() + 0.02));
+                w.addBox(box, {turn, centre}, 1.0);
+            }
+    }
+}
+
 /// Six kinds of hull, 8 to 32 vertices, about 0.15 m across.
 std::vector<std::vector<Vec3>> hullKinds() {
     std::vector<std::vector<Vec3>> kinds;
@@ -152,12 +190,7 @@ std::vector<std::vector<Vec3>> hullKinds() {
 
 void hullPile(World& w) {
     dCreatePlane(w.space, 0, 0, 1, 0);
-    const double half = 2.2;  // the bin's inner half width
-    for (int side = 0; side < 4; ++side) {
-        const Vec3 centre = side < 2 ? Vec3((side ? 1 : -1) * (half + 0.1), 0, 2.5) : Vec3(0, (side == 3 ? 1 : -1) * (half + 0.1), 2.5);
-        const Vec3 extents = side < 2 ? Vec3(0.1, half + 0.2, 2.5) : Vec3(half + 0.2, 0.1, 2.5);
-        w.addStaticBox(extents, centre);
-    }
+    addBin(w, 2.2);
     const auto kinds = hullKinds();
     Random random(2010);
     int made = 0;
@@ -176,24 +209,60 @@ struct Scene {
 
 struct Result {
     std::string scene, collider;
-    int bodies = 0, steps = 0;
-    double stepMs = 0, collisionMs = 0, solverMs = 0;
-    double broadPhaseMs = 0;  // of collisionMs: dSpaceCollide with an empty near callback
-    double contactsPerStep = 0;
-    double maxDisplacement = 0;  // metres, largest distance of a body from its start
+    int bodies = 0, settleSteps = 0, steps = 0;
+    // Medians and quartiles over the measured steps, CPU ms.
+    std::array<double, 3> stepMs{}, collisionMs{};  // 25th percentile, median, 75th percentile
+    double solverMs = 0, broadPhaseMs = 0;          // medians
+    double contactsPerStep = 0;    // mean over the measured steps
+    double maxDisplacement = 0;    // metres, largest distance of a body from its start
+    double settledMotion = 0;      // metres, largest distance a body moved during the measured steps
+    int movingBodies = 0;          // bodies that moved more than kMovingMetres during the measured steps
 };
 
-Result run(const Scene& scene, Collider collider, int steps) {
-    World w(collider);
-    scene.build(w);
-    std::vector<Vec3> start;
+/// The 25th percentile, median and 75th percentile of `values`.
+std::array<double, 3> quartiles(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    auto at = [&](double q) {
+        const double x = q * (values.size() - 1);
+        const std::size_t i = static_cast<std::size_t>(x);
+        return i + 1 < values.size() ? values[i] + (x - i) * (values[i + 1] - values[i]) : values[i];
+    };
+    return {at(0.25), at(0.5), at(0.75)};
+}
+
+std::vector<Vec3> positions(const World& w) {
+    std::vector<Vec3> out;
     for (dBodyID b : w.bodies) {
         const dReal* p = dBodyGetPosition(b);
-        start.emplace_back(p[0], p[1], p[2]);
+        out.emplace_back(p[0], p[1], p[2]);
     }
-    double collision = 0, solver = 0, total = 0, broadPhase = 0;
+    return out;
+}
+
+/// A body that moves farther than this during the measured steps counts as still moving.
+constexpr double kMovingMetres = 0.01;
+
+int countMoving(const std::vector<Vec3>& from, const std::vector<Vec3>& to) {
+    int moving = 0;
+    for (std::size_t i = 0; i < from.size(); ++i) moving += (to[i] - from[i]).norm() > kMovingMetres;
+    return moving;
+}
+
+double largestMove(const std::vector<Vec3>& from, const std::vector<Vec3>& to) {
+    double largest = 0;
+    for (std::size_t i = 0; i < from.size(); ++i) largest = std::max(largest, (to[i] - from[i]).norm());
+    return largest;
+}
+
+Result run(const Scene& scene, Collider collider, int settleSteps, int steps) {
+    World w(collider);
+    scene.build(w);
+    const std::vector<Vec3> start = positions(w);
+    std::vector<Vec3> settled;
+    std::vector<double> collision, solver, total, broadPhase;
     long long contacts = 0;
-    for (int step = 0; step < steps; ++step) {
+    for (int step = 0; step < settleSteps + steps; ++step) {
+        if (step == settleSteps) settled = positions(w);
         w.contactsThisStep = 0;
         const double t0 = threadCpuSeconds();
         dSpaceCollide(w.space, &w, nearCallback);
@@ -202,30 +271,31 @@ Result run(const Scene& scene, Collider collider, int steps) {
         // step; run after the real pass so that it finds the bounding boxes already up to date.
         dSpaceCollide(w.space, nullptr, [](void*, dGeomID, dGeomID) {});
         const double t1b = threadCpuSeconds();
-        broadPhase += 1000 * (t1b - t1);
         dWorldQuickStep(w.world, kTimeStep);
-        const double t2 = threadCpuSeconds();
         dJointGroupEmpty(w.joints);
         const double t3 = threadCpuSeconds();
-        collision += 1000 * (t1 - t0);
-        solver += 1000 * (t2 - t1b);
-        total += 1000 * ((t3 - t0) - (t1b - t1));
+        if (step < settleSteps) continue;
+        broadPhase.push_back(1000 * (t1b - t1));
+        collision.push_back(1000 * (t1 - t0));
+        solver.push_back(1000 * (t3 - t1b));
+        total.push_back(1000 * ((t3 - t0) - (t1b - t1)));
         contacts += w.contactsThisStep;
     }
     Result r;
     r.scene = scene.name;
     r.collider = collider == Collider::Gdcontact ? "gdcontact" : "ode";
     r.bodies = static_cast<int>(w.bodies.size());
+    r.settleSteps = settleSteps;
     r.steps = steps;
-    r.stepMs = total / steps;
-    r.collisionMs = collision / steps;
-    r.solverMs = solver / steps;
-    r.broadPhaseMs = broadPhase / steps;
+    r.stepMs = quartiles(total);
+    r.collisionMs = quartiles(collision);
+    r.solverMs = quartiles(solver)[1];
+    r.broadPhaseMs = quartiles(broadPhase)[1];
     r.contactsPerStep = static_cast<double>(contacts) / steps;
-    for (std::size_t i = 0; i < w.bodies.size(); ++i) {
-        const dReal* p = dBodyGetPosition(w.bodies[i]);
-        r.maxDisplacement = std::max(r.maxDisplacement, (Vec3(p[0], p[1], p[2]) - start[i]).norm());
-    }
+    const std::vector<Vec3> end = positions(w);
+    r.maxDisplacement = largestMove(start, end);
+    r.settledMotion = largestMove(settled.empty() ? start : settled, end);
+    r.movingBodies = countMoving(settled.empty() ? start : settled, end);
     return r;
 }
 
@@ -234,37 +304,49 @@ Result run(const Scene& scene, Collider collider, int steps) {
 
 int main(int argc, char** argv) {
     using namespace gdcbench;
-    int steps = 180;
+    int settle = 180, steps = 120;
     std::string out;
+    std::vector<std::string> only;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         if (arg == "--steps" && i + 1 < argc) {
-            steps = std::stoi(argv[++i]);
+            steps = std::max(1, std::stoi(argv[++i]));
+        } else if (arg == "--settle" && i + 1 < argc) {
+            settle = std::max(0, std::stoi(argv[++i]));
         } else if (arg == "--out" && i + 1 < argc) {
             out = argv[++i];
+        } else if (!arg.empty() && arg[0] != '-') {
+            only.push_back(arg);
         } else {
-            std::cerr << "usage: bench_scenes [--steps N] [--out FILE.csv]\n";
+            std::cerr << "usage: bench_scenes [--settle N] [--steps N] [--out FILE.csv] [SCENE...]\n";
             return 2;
         }
     }
     OdeSession ode;
-    const std::vector<Scene> scenes{{"brick_wall", brickWall}, {"pyramid", pyramid}, {"hull_pile", hullPile}};
+    const std::vector<Scene> scenes{
+        {"brick_wall", brickWall}, {"box_pile", boxPile}, {"pyramid", pyramid}, {"hull_pile", hullPile}};
     std::vector<Result> results;
-    for (const Scene& scene : scenes)
+    for (const Scene& scene : scenes) {
+        if (!only.empty() && std::find(only.begin(), only.end(), scene.name) == only.end()) continue;
         for (Collider collider : {Collider::Gdcontact, Collider::OdeNative}) {
-            results.push_back(run(scene, collider, steps));
+            results.push_back(run(scene, collider, settle, steps));
             const Result& r = results.back();
-            std::cerr << r.scene << " " << r.collider << ": " << r.stepMs << " ms/step, collision "
-                      << 100 * r.collisionMs / r.stepMs << " %\n";
+            std::cerr << r.scene << " " << r.collider << ": " << r.stepMs[1] << " ms/step, collision "
+                      << r.collisionMs[1] << " ms (medians); while measured, " << r.movingBodies
+                      << " bodies moved more than 1 cm, the farthest " << r.settledMotion << " m\n";
         }
+    }
     std::ofstream file;
     if (!out.empty()) file.open(out);
     std::ostream& csv = out.empty() ? std::cout : file;
-    csv << "scene,collider,bodies,steps,step_ms,collision_ms,solver_ms,collision_fraction,contacts_per_step,"
-           "max_displacement_m,broad_phase_ms\n";
+    csv << "scene,collider,bodies,settle_steps,steps,step_ms,step_ms_p25,step_ms_p75,collision_ms,collision_ms_p25,"
+           "collision_ms_p75,solver_ms,broad_phase_ms,collision_fraction,contacts_per_step,max_displacement_m,"
+           "settled_motion_m,moving_bodies\n";
     for (const Result& r : results)
-        csv << r.scene << ',' << r.collider << ',' << r.bodies << ',' << r.steps << ',' << r.stepMs << ','
-            << r.collisionMs << ',' << r.solverMs << ',' << r.collisionMs / r.stepMs << ',' << r.contactsPerStep
-            << ',' << r.maxDisplacement << ',' << r.broadPhaseMs << '\n';
+        csv << r.scene << ',' << r.collider << ',' << r.bodies << ',' << r.settleSteps << ',' << r.steps << ','
+            << r.stepMs[1] << ',' << r.stepMs[0] << ',' << r.stepMs[2] << ',' << r.collisionMs[1] << ','
+            << r.collisionMs[0] << ',' << r.collisionMs[2] << ',' << r.solverMs << ',' << r.broadPhaseMs << ','
+            << r.collisionMs[1] / r.stepMs[1] << ',' << r.contactsPerStep << ',' << r.maxDisplacement << ','
+            << r.settledMotion << ',' << r.movingBodies << '\n';
     return 0;
 }
