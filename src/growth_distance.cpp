@@ -209,9 +209,10 @@ GrowthDistance growthDistance(const MinkowskiDifference& difference, const Setti
     if (!cast.hit || !(cast.normal.squaredNorm() > 0) || !cast.normal.allFinite()) return result;
     if (!(exitDistance > 0)) return result;
     result.valid = true;
-    result.hasWitnesses = true;
     result.normal = cast.normal.normalized();
     result.growth = separation / exitDistance;
+    if (!needWitnesses) return result;  // collide() needs only the normal
+    result.hasWitnesses = true;
     castWitnesses(cast, difference, result.witnessA, result.witnessB);
     return result;
 }

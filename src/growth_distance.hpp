@@ -113,7 +113,7 @@ struct GrowthDistance {
     bool valid = false;   // false when the contraction points coincide or the cast failed
     Vec3 normal = Vec3::UnitZ();  // unit, from A towards B
     double growth = 1;    // α: < 1 overlapping, > 1 separated
-    bool hasWitnesses = false;     // the box fast path finds the normal without them
+    bool hasWitnesses = false;     // only when asked for (needWitnesses): collide() needs the normal only
     Vec3 witnessA = Vec3::Zero();  // points of A and B whose difference is the exit point (on the
     Vec3 witnessB = Vec3::Zero();  // centre line, inside A ∩ B when overlapping)
     int iterations = 0;
