@@ -3,7 +3,7 @@
 // detail::collideGeneral (collide.cpp) is the reference: this file computes the same numbers by
 // the same floating-point expressions, in the same order, and differs only in what it skips —
 // a box's support and Gauss-map feature in closed form instead of a search over its adjacency, a
-// small hull's depths from one loop over its vertices, the angular tolerance's cosine and sine
+// small hull's depths from one loop over its vertices, a box's angular-tolerance cosine and sine
 // only where a comparison with them is close, and the contacts written straight to the
 // manifold when no reduction is needed. tests/half_space_test.cpp runs both on random poses.
 #include "half_space.hpp"

@@ -126,6 +126,7 @@ Settings randomSettings(double size, Random& random) {
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     Settings settings;
     settings.maxContacts = 1 + static_cast<int>(unit(random) * 8) % 8;
+    if (unit(random) < 0.05) settings.maxContacts = unit(random) < 0.5 ? 0 : 16 + static_cast<int>(unit(random) * 8);
     settings.margin = unit(random) < 0.5 ? 0.0 : 0.05 * size * unit(random);
     settings.spanContactRegion = unit(random) < 0.5;
     const double toleranceKind = unit(random);
@@ -464,4 +465,40 @@ TEST_CASE("half-space: the specialised path refuses bad input with the general p
             }
         }
     CHECK(errors >= 2 * 9);
+}
+
+TEST_CASE("half-space: exact ties between a box's axes go where selectFeature sends them") {
+    // Contact directions with equal components: the vertex exactly down, an edge at exactly 45°,
+    // and two edges exactly equally near perpendicular (a wide tolerance), with every sign and
+    // order. Ties must resolve as selectFeature resolves them (the lowest face or edge index).
+    const Polytope box = Polytope::box(Vec3(0.5, 0.4, 0.3));
+    const Polytope hull = Polytope::fromPoints(cubeCorners(0.5));
+    const HalfSpace ground{Vec3::UnitZ(), 0.0};
+    const double third = std::sqrt(1.0 / 3), half = std::sqrt(0.5), b = std::sqrt(1 - 2 * 0.55 * 0.55);
+    const Vec3 directions[] = {Vec3(third, third, third), Vec3(0, half, half), Vec3(0.55, 0.55, b), Vec3(0, 0, 1)};
+    Differences differences;
+    int edges = 0;
+    for (const Vec3& base : directions)
+        for (int signs = 0; signs < 8; ++signs)
+            for (int order = 0; order < 3; ++order) {
+                Vec3 row3;
+                for (int k = 0; k < 3; ++k) row3[(k + order) % 3] = (signs >> k) & 1 ? -base[k] : base[k];
+                const Vec3 helper = std::abs(row3.x()) < 0.9 ? Vec3(Vec3::UnitX()) : Vec3(Vec3::UnitY());
+                const Vec3 row1 = helper.cross(row3).normalized();
+                Mat3 rotation;
+                rotation.row(0) = row1, rotation.row(1) = row3.cross(row1), rotation.row(2) = row3;
+                for (double tolerance : {0.05, 0.7})
+                    for (const Polytope* shape : {&box, &hull}) {
+                        Settings settings;
+                        settings.angularTolerance = tolerance;
+                        double lowest = INFINITY;
+                        for (const Vec3& v : shape->vertices()) lowest = std::min(lowest, (rotation * v).z());
+                        const Pose pose{rotation, Vec3(0, 0, -1e-3 - lowest)};
+                        const Manifold general = detail::collideGeneral(*shape, pose, ground, settings);
+                        edges += general.featureA.type == FeatureType::Edge;
+                        requireSame(general, collide(*shape, pose, ground, settings), shape->radius(), differences);
+                    }
+            }
+    CHECK(differences.nonEmpty == differences.compared);
+    CHECK(edges > 0);
 }
