@@ -6,6 +6,7 @@
 #include "feature_intersection.hpp"
 #include "gauss_map.hpp"
 #include "growth_distance.hpp"
+#include "half_space.hpp"
 #include "minkowski.hpp"
 #include "reduction.hpp"
 #include "separating_axis.hpp"
@@ -528,6 +529,8 @@ Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const 
 }
 
 Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings) {
+    // Boxes and small hulls: a vertex loop, tested equal to the general path (half_space.hpp).
+    if (detail::halfSpaceFastPathApplies(a, settings)) return detail::collideHalfSpace(a, poseA, b, settings);
     return detail::collideGeneral(a, poseA, b, settings);
 }
 

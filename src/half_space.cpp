@@ -1,0 +1,378 @@
+// The polytope–half-space query without the general machinery where a vertex loop suffices.
+//
+// detail::collideGeneral (collide.cpp) is the reference: this file computes the same numbers by
+// the same floating-point expressions, in the same order, and differs only in what it skips —
+// a box's support and Gauss-map feature in closed form instead of a search over its adjacency, a
+// small hull's depths from one loop over its vertices, a box's angular-tolerance cosine and sine
+// only where a comparison with them is close, and the contacts written straight to the
+// manifold when no reduction is needed. tests/half_space_test.cpp runs both on random poses.
+#include "half_space.hpp"
+
+#include "feature_intersection.hpp"
+#include "gauss_map.hpp"
+#include "reduction.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <type_traits>
+
+namespace gdc::detail {
+namespace {
+
+// Polytope::box's layout (polytope.cpp, pinned by tests/half_space_test.cpp): vertex i has the
+// signs of bits (x: 1, y: 2, z: 4); face 2k has normal −e_k and face 2k + 1 has +e_k; edges are
+// numbered by (tail, head) with tail < head. kBoxEdge[v][k] is the edge from vertex v along axis k.
+constexpr int kBoxEdge[8][3] = {{0, 1, 2}, {0, 3, 4}, {5, 1, 6}, {5, 3, 7},
+                                {8, 9, 2}, {8, 10, 4}, {11, 9, 6}, {11, 10, 7}};
+
+void requireFinite(const Pose& pose) {
+    // x·0 is 0 for every finite x and NaN otherwise: one test for the twelve numbers.
+    const double nonFinite = (pose.rotation.array() * 0.0).sum() + (pose.position.array() * 0.0).sum();
+    if (!(nonFinite == 0)) throw InvalidInput("the pose of A is not finite");
+}
+
+// The half-space in A's frame: the solid is {x : m·x ≤ offset}; the contact normal is −m.
+struct PlaneInA {
+    Vec3 m;
+    double offset;
+    double depthOf(const Vec3& x) const { return offset - m.dot(x); }
+};
+
+// collideGeneral's normalisation and change of frame, expression for expression (so to the bit):
+// through the largest component first, so that a finite normal of huge or tiny components
+// neither overflows nor underflows.
+PlaneInA planeInA(const HalfSpace& b, const Pose& poseA) {
+    const Vec3 magnitude = b.normal.cwiseAbs();
+    const double largest = std::max(std::max(magnitude.x(), magnitude.y()), magnitude.z());
+    if (!((b.normal * 0.0).sum() + b.offset * 0.0 == 0) || !(largest > 0))
+        throw InvalidInput("the half-space normal must be finite and non-zero");
+    // An axis-aligned unit normal (a ground plane) is its own normalisation: divided by 1 twice.
+    if (largest == 1 && b.normal.squaredNorm() == 1)
+        return {poseA.rotation.transpose() * b.normal, b.offset - b.normal.dot(poseA.position)};
+    const double normalLength = (b.normal / largest).norm();
+    const Vec3 unitNormal = b.normal / largest / normalLength;
+    const double scaledOffset = b.offset / largest / normalLength;
+    if (!std::isfinite(scaledOffset))
+        throw InvalidInput("the half-space offset overflows double precision once its normal is normalised");
+    return {poseA.rotation.transpose() * unitNormal, scaledOffset - unitNormal.dot(poseA.position)};
+}
+
+// The comparisons of selectFeature with the Gauss-map tolerance's cosine and sine, settled by
+// Taylor bounds (cos θ ∈ [1 − θ²/2, 1 − θ²/2 + θ⁴/24], sin θ ∈ [θ − θ³/6, θ] for 0 ≤ θ ≤ 1)
+// wherever the value is clear of them by far more than rounding; only a value within that slack
+// of the tolerance pays for AngularTolerance's series, whose numbers then decide as they do in
+// selectFeature.
+class ToleranceTest {
+public:
+    explicit ToleranceTest(double radians) : radians_(radians), square_(radians * radians) {}
+
+    /// c ≥ AngularTolerance(radians).cosine: a face within the tolerance.
+    bool withinCosine(double c) {
+        const double lower = 1 - 0.5 * square_;
+        if (c >= lower + square_ * square_ / 24 + kSlack) return true;
+        if (c < lower - kSlack) return false;
+        return c >= exact().cosine;
+    }
+    /// s ≤ AngularTolerance(radians).sine: an edge within the tolerance.
+    bool withinSine(double s) {
+        if (s <= radians_ - radians_ * square_ / 6 - kSlack) return true;
+        if (s > radians_ + kSlack) return false;
+        return s <= exact().sine;
+    }
+
+private:
+    // Far above the rounding of the bounds and of AngularTolerance's series (a few 1e-16).
+    static constexpr double kSlack = 1e-14;
+    const AngularTolerance& exact() {
+        if (!exact_) exact_.emplace(radians_);
+        return *exact_;
+    }
+    double radians_, square_;
+    std::optional<AngularTolerance> exact_;
+};
+
+// Polytope::supportVertex for a box.
+int boxSupport(const Vec3& direction) {
+    return (direction.x() > 0 ? 1 : 0) | (direction.y() > 0 ? 2 : 0) | (direction.z() > 0 ? 4 : 0);
+}
+
+// selectFeature(box, direction, support, tolerance) in closed form. With the box's exact axes
+// every number selectFeature compares is a component of `direction`, exactly:
+// - faces: the face of the support vertex along axis k has cosine |d_k|; the other candidates
+//   (faces of neighbouring vertices) are the same faces or opposite ones at −|d_k|, which never
+//   win. So the face is the axis of largest |d_k| (ties: the lowest axis, the lowest face index),
+//   when |d_k| ≥ cos θ.
+// - edges: the edge along axis k has sine |d_k|, and every edge of the support vertex passes the
+//   between-the-normals test (its faces' normals point along the signs of d). An edge of a
+//   neighbour passes it only where a component of d is exactly 0, and then ties with the support
+//   vertex's parallel edge, whose index is lower. So the edge is the smallest |d_k| (ties: the
+//   lowest edge index), when |d_k| ≤ sin θ.
+Feature boxFeature(const Vec3& direction, int support, ToleranceTest& tolerance) {
+    const Vec3 c = direction.cwiseAbs();
+    int axis = c.y() > c.x() ? 1 : 0;
+    if (c.z() > c[axis]) axis = 2;
+    if (tolerance.withinCosine(c[axis])) return {FeatureType::Face, 2 * axis + ((support >> axis) & 1)};
+    const int* edges = kBoxEdge[support];
+    int edge = edges[0];
+    double sine = c.x();
+    for (int k = 1; k < 3; ++k)
+        if (c[k] < sine || (c[k] == sine && edges[k] < edge)) sine = c[k], edge = edges[k];
+    if (tolerance.withinSine(sine)) return {FeatureType::Edge, edge};
+    return {FeatureType::Vertex, support};
+}
+
+// The vertex indices of a feature in order (featureVertices, inlined).
+int featureIndices(const Polytope& polytope, const Feature& feature, const int** indices, int* storage) {
+    if (feature.type == FeatureType::Face) {
+        const Polytope::Face& face = polytope.faces()[feature.index];
+        *indices = polytope.faceVertices().data() + face.first;
+        return face.count;
+    }
+    *indices = storage;
+    if (feature.type == FeatureType::Vertex) {
+        storage[0] = feature.index;
+        return 1;
+    }
+    storage[0] = polytope.edges()[feature.index].tail;
+    storage[1] = polytope.edges()[feature.index].head;
+    return 2;
+}
+
+// faceCap's own shortcut (gauss_map.cpp): a face within the tolerance whose nearest Gauss-map
+// neighbour is over twice the tolerance away is its cap alone. Same numbers, same slack.
+bool capIsFaceAlone(const Polytope& polytope, int face, const Vec3& direction, const AngularTolerance& tolerance) {
+    constexpr double kCosineSlack = 1e-9;
+    const Polytope::Face& selected = polytope.faces()[face];
+    const double twiceToleranceCosine = 2 * tolerance.cosine * tolerance.cosine - 1;
+    return tolerance.cosine >= 0 && selected.normal.dot(direction) >= tolerance.cosine &&
+           selected.nearestNeighbourCosine < twiceToleranceCosine - kCosineSlack;
+}
+
+// The contacts as collideGeneral's `add` makes them (x lifted half its depth onto the plane),
+// written straight to the manifold in the world frame as emit writes them: used when the points
+// cannot outnumber the caller's maximum, so that emit would keep them all in order.
+class DirectPoints {
+public:
+    DirectPoints(Manifold& manifold, const Pose& pose, const Vec3& m) : manifold_(manifold), pose_(pose), m_(m) {}
+    void add(const Vec3& x, double depth) {
+        ContactPoint& point = manifold_.points[manifold_.pointCount++];
+        point = {pose_.apply(x + 0.5 * depth * m_), depth};
+        nonFinite_ += (point.position * 0.0).sum() + depth * 0.0;
+    }
+    bool empty() const { return manifold_.pointCount == 0; }
+    // emit's overflow check.
+    void finish() const {
+        if (!(nonFinite_ == 0))
+            throw InvalidInput("the contact overflows double precision (coordinates or offsets near 1e308)");
+    }
+
+private:
+    Manifold& manifold_;
+    const Pose& pose_;
+    const Vec3& m_;
+    double nonFinite_ = 0;
+};
+
+// The contacts gathered in A's frame as collideGeneral gathers them, then reduced and written as
+// its emit does: used when there may be more than the caller's maximum (or a cap's crossings
+// need the points found so far).
+class GatheredPoints {
+public:
+    explicit GatheredPoints(const Vec3& m) : m_(m) {}
+    void add(const Vec3& x, double depth) { kept_.push_back({x + 0.5 * depth * m_, depth, Vec2::Zero()}); }
+    bool empty() const { return kept_.empty(); }
+    // Whether a crossing is within `tolerance` of a point already found (cap faces share edges).
+    bool knows(const Vec3& crossing, double tolerance) const {
+        for (const LiftedPoint& point : kept_)
+            if ((point.position - 0.5 * point.depth * m_ - crossing).squaredNorm() <= tolerance * tolerance) return true;
+        return false;
+    }
+    void emit(const Vec3& normal, const Pose& poseA, const Settings& settings, Manifold& manifold) {
+        // Planar coordinates serve only the reduction: computed when there is something to reduce.
+        if (static_cast<int>(kept_.size()) > settings.maxContacts) {
+            Vec3 u, v;
+            planeBasis(normal, u, v);
+            for (LiftedPoint& point : kept_) point.planar = Vec2(point.position.dot(u), point.position.dot(v));
+        }
+        int chosen[kMaxManifoldPoints];
+        const int maxCount = std::max(1, std::min(settings.maxContacts, kMaxManifoldPoints));
+        const int total = static_cast<int>(kept_.size());
+        const int count = total <= maxCount ? total : reduceContacts(kept_, maxCount, chosen);
+        double nonFinite = 0;
+        for (int i = 0; i < count; ++i) {
+            const LiftedPoint& point = kept_[total <= maxCount ? i : chosen[i]];
+            manifold.points[i] = {poseA.apply(point.position), point.depth};
+            nonFinite += (manifold.points[i].position * 0.0).sum() + point.depth * 0.0;
+        }
+        manifold.pointCount = count;
+        if (!(nonFinite == 0))
+            throw InvalidInput("the contact overflows double precision (coordinates or offsets near 1e308)");
+    }
+
+private:
+    const Vec3& m_;
+    LiftedPoints kept_;
+};
+
+// What both paths share once the support and the feature are known.
+struct Query {
+    const Polytope& a;
+    const PlaneInA& plane;
+    const Settings& settings;
+    double tolerance;  // 1e-9 × A's radius, as in collideGeneral
+    double keepDepth;  // −margin − tolerance
+
+    // With Settings::spanContactRegion: where an edge runs from contact into a clear gap, the
+    // point where it crosses the contact depth (collideGeneral's addCrossing).
+    template <class Points>
+    void addCrossing(const Vec3& x, double depthX, const Vec3& y, double depthY, bool checkKnown, Points& points) const {
+        const double t = contactBoundaryCrossing(depthX, depthY, -settings.margin, tolerance);
+        if (std::isnan(t)) return;
+        const Vec3 crossing = x + t * (y - x);
+        if constexpr (std::is_same_v<Points, GatheredPoints>)
+            if (checkKnown && points.knows(crossing, tolerance)) return;
+        points.add(crossing, plane.depthOf(crossing));
+    }
+
+    // One vertex, an edge, or a face's loop: each depth once (`depths`, in loop order), each
+    // point in loop order, a crossing after its edge's first vertex.
+    template <class Points>
+    void liftLoop(const int* indices, const double* depths, int count, Points& points) const {
+        const int edges = count >= 3 ? count : count - 1;  // a face's loop closes; an edge is one edge
+        const Vec3* vertices = a.vertices().data();
+        for (int i = 0; i < count; ++i) {
+            const Vec3& x = vertices[indices[i]];
+            if (depths[i] >= keepDepth) points.add(x, depths[i]);
+            if (!settings.spanContactRegion || i >= edges) continue;
+            const int next = i + 1 == count ? 0 : i + 1;
+            addCrossing(x, depths[i], vertices[indices[next]], depths[next], false, points);
+        }
+    }
+
+    // A face's cap of near-coplanar faces: every cap vertex, then the crossings of every cap
+    // face's edges, each crossing once.
+    template <class VertexDepth>
+    void liftCap(const SmallVector<int, 8>& cap, VertexDepth depthOfVertex, GatheredPoints& points) const {
+        SmallVector<int, 32> capVertices;
+        for (int f : cap) {
+            const Polytope::Face& face = a.faces()[f];
+            for (int i = 0; i < face.count; ++i) {
+                const int vertex = a.faceVertices()[face.first + i];
+                bool seen = false;
+                for (int v : capVertices) seen |= v == vertex;
+                if (!seen) capVertices.push_back(vertex);
+            }
+        }
+        for (int v : capVertices) {
+            const double depth = depthOfVertex(v);
+            if (depth >= keepDepth) points.add(a.vertices()[v], depth);
+        }
+        if (!settings.spanContactRegion) return;
+        for (int f : cap) {
+            const Polytope::Face& loop = a.faces()[f];
+            const int* corners = a.faceVertices().data() + loop.first;
+            for (int i = 0; i < loop.count; ++i) {
+                const int x = corners[i], y = corners[i + 1 == loop.count ? 0 : i + 1];
+                addCrossing(a.vertices()[x], depthOfVertex(x), a.vertices()[y], depthOfVertex(y), true, points);
+            }
+        }
+    }
+
+    // The feature's points into the manifold: straight when they cannot outnumber the caller's
+    // maximum, gathered and reduced otherwise. A tilted face whose points all float keeps the
+    // deepest vertex.
+    template <class VertexDepth>
+    void liftFeature(const Feature& feature, int deepest, const SmallVector<int, 8>* cap, VertexDepth depthOfVertex,
+                     const Pose& poseA, Manifold& manifold) const {
+        const Vec3 normal = -plane.m;
+        int storage[2];
+        const int* indices = nullptr;
+        const int count = featureIndices(a, feature, &indices, storage);
+        const int maxCount = std::max(1, std::min(settings.maxContacts, kMaxManifoldPoints));
+        const int mostPoints = settings.spanContactRegion ? 2 * count : count;
+        auto keepDeepestIfNone = [&](auto& points) {
+            if (points.empty()) points.add(a.vertices()[deepest], depthOfVertex(deepest));
+        };
+        if (!cap && mostPoints <= maxCount) {
+            double depths[kMaxManifoldPoints];  // count ≤ maxCount ≤ kMaxManifoldPoints
+            for (int i = 0; i < count; ++i) depths[i] = depthOfVertex(indices[i]);
+            DirectPoints points(manifold, poseA, plane.m);
+            liftLoop(indices, depths, count, points);
+            keepDeepestIfNone(points);
+            manifold.normal = poseA.rotation * normal;
+            points.finish();
+            return;
+        }
+        GatheredPoints points(plane.m);
+        if (cap) {
+            liftCap(*cap, depthOfVertex, points);
+        } else {
+            SmallVector<double, 32> depths;
+            for (int i = 0; i < count; ++i) depths.push_back(depthOfVertex(indices[i]));
+            liftLoop(indices, depths.data(), count, points);
+        }
+        keepDeepestIfNone(points);
+        manifold.normal = poseA.rotation * normal;
+        points.emit(normal, poseA, settings, manifold);
+    }
+};
+
+Manifold collideBox(const Polytope& a, const Pose& poseA, const PlaneInA& plane, const Settings& settings) {
+    Manifold manifold;
+    const double tolerance = 1e-9 * a.radius();
+    const Query query{a, plane, settings, tolerance, -settings.margin - tolerance};
+    const Vec3 normal = -plane.m;
+    const int deepest = boxSupport(normal);
+    const Vec3* vertices = a.vertices().data();
+    if (plane.depthOf(vertices[deepest]) < query.keepDepth) return manifold;
+    ToleranceTest angularTolerance(settings.angularTolerance);
+    manifold.featureA = boxFeature(normal, deepest, angularTolerance);
+    manifold.featureB = {FeatureType::Face, 0};
+    // A box's face is its whole cap (no other face lies within a tolerance below π/4).
+    query.liftFeature(manifold.featureA, deepest, nullptr, [&](int v) { return plane.depthOf(vertices[v]); }, poseA,
+                      manifold);
+    return manifold;
+}
+
+Manifold collideSmallHull(const Polytope& a, const Pose& poseA, const PlaneInA& plane, const Settings& settings) {
+    Manifold manifold;
+    const double tolerance = 1e-9 * a.radius();
+    const Query query{a, plane, settings, tolerance, -settings.margin - tolerance};
+    // One loop: every vertex's height m·x along the plane's normal, and the lowest one — the
+    // support along −m, the first of equals as supportVertex's brute force finds it
+    // (x·(−m) is −(m·x) to the bit).
+    const std::vector<Vec3>& vertices = a.vertices();
+    const int vertexCount = static_cast<int>(vertices.size());
+    double heights[kMaxSmallHullVertices];
+    int deepest = 0;
+    double lowest = heights[0] = plane.m.dot(vertices[0]);
+    for (int v = 1; v < vertexCount; ++v) {
+        const double height = heights[v] = plane.m.dot(vertices[v]);
+        if (height < lowest) lowest = height, deepest = v;
+    }
+    if (plane.offset - lowest < query.keepDepth) return manifold;
+
+    const Vec3 normal = -plane.m;
+    const AngularTolerance angularTolerance(settings.angularTolerance);
+    manifold.featureA = selectFeature(a, normal, deepest, angularTolerance);
+    manifold.featureB = {FeatureType::Face, 0};
+    SmallVector<int, 8> cap;
+    const bool hasCap = manifold.featureA.type == FeatureType::Face &&
+                        !capIsFaceAlone(a, manifold.featureA.index, normal, angularTolerance) &&
+                        (faceCap(a, manifold.featureA.index, normal, angularTolerance, cap), cap.size() > 1);
+    const double* height = heights;
+    query.liftFeature(manifold.featureA, deepest, hasCap ? &cap : nullptr,
+                      [&](int v) { return plane.offset - height[v]; }, poseA, manifold);
+    return manifold;
+}
+
+}  // namespace
+
+Manifold collideHalfSpace(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings) {
+    requireFinite(poseA);
+    const PlaneInA plane = planeInA(b, poseA);
+    return a.isBox() ? collideBox(a, poseA, plane, settings) : collideSmallHull(a, poseA, plane, settings);
+}
+
+}  // namespace gdc::detail

@@ -1,0 +1,43 @@
+// The polytope–half-space query where a vertex loop suffices: boxes (closed-form support and
+// Gauss-map feature) and small hulls (one loop over the vertices gives every depth, the support
+// and the early out). It returns the Manifold that detail::collideGeneral returns for the same
+// input — the same normal, points, order, depths and features, computed by the same floating-
+// point expressions — and throws the same InvalidInput for bad input. collide() dispatches.
+#pragma once
+
+#include <gdcontact/collide.hpp>
+
+namespace gdc::detail {
+
+/// Largest Settings::angularTolerance (radians) the specialised path takes: below π/4, so that
+/// no two faces of a box both lie within the tolerance of a direction.
+constexpr double kMaxHalfSpaceAngularTolerance = 0.75;
+
+/// Box extents whose squares and products of squares neither overflow nor underflow (nor turn
+/// subnormal): there Polytope::box's face normals (Newell's, normalised) are exactly ±e_k and its
+/// edge directions normalise to exactly e_k (in binary floating point √(x²) is |x| for such x),
+/// which the closed-form feature relies on. A box of extents 1e-80 (which Polytope::box accepts)
+/// has face normals off the axes by an ulp.
+constexpr double kSmallestBoxExtent = 1e-60, kLargestBoxExtent = 1e60;
+
+/// Most vertices of a hull the specialised path takes (its depths live on the stack).
+constexpr int kMaxSmallHullVertices = 64;
+
+/// Whether collideHalfSpace handles `polytope` under `settings`: a box of moderate extents, or a
+/// hull small enough for the brute-force support search, with an angular tolerance of at most
+/// kMaxHalfSpaceAngularTolerance (where a box's face cap is always the face alone). Inline: it
+/// runs on every call.
+inline bool halfSpaceFastPathApplies(const Polytope& polytope, const Settings& settings) {
+    if (!(settings.angularTolerance >= 0 && settings.angularTolerance <= kMaxHalfSpaceAngularTolerance)) return false;
+    if (polytope.isBox()) {
+        const Vec3& extents = polytope.boxHalfExtents();
+        return extents.minCoeff() >= kSmallestBoxExtent && extents.maxCoeff() <= kLargestBoxExtent;
+    }
+    const int vertexCount = static_cast<int>(polytope.vertices().size());
+    return vertexCount <= settings.bruteForceSupportLimit && vertexCount <= kMaxSmallHullVertices;
+}
+
+/// collideGeneral(a, poseA, b, settings) for the inputs halfSpaceFastPathApplies accepts.
+Manifold collideHalfSpace(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings);
+
+}  // namespace gdc::detail
