@@ -13,7 +13,9 @@ install_packages() {
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${missing[@]}"
 }
 
+# Packages needed to build the library alone (the lean build: GDCONTACT_BUILD_TESTS/SAMPLES=OFF).
+LIBRARY_PACKAGES=(build-essential cmake pkg-config libeigen3-dev libqhull-dev libode-dev)
 # Packages needed to build the library, samples, viewer and tests, and to run the viewer's tests
 # headless (Xvfb with Mesa's software OpenGL).
-BUILD_PACKAGES=(build-essential cmake pkg-config libeigen3-dev libqhull-dev libode-dev libccd-dev catch2
+BUILD_PACKAGES=("${LIBRARY_PACKAGES[@]}" libccd-dev catch2
                 libglfw3-dev libimgui-dev libstb-dev libgl-dev xvfb xauth libgl1-mesa-dri)

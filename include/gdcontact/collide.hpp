@@ -18,12 +18,12 @@ struct HalfSpace {
 /// normal, one Gauss-map feature per body, feature intersection in the contact plane.
 /// Returns an empty manifold when the pair is separated by more than settings.margin.
 /// Throws InvalidInput for non-finite poses.
-Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
+GDCONTACT_API Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
                  const Settings& settings = {});
 
 /// Contact manifold between a convex polytope (A) and a solid half-space (B). The normal is
 /// −halfSpace.normal (from A into B's solid, as above).
-Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b,
+GDCONTACT_API Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b,
                  const Settings& settings = {});
 
 }  // namespace gdc

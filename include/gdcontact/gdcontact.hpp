@@ -6,3 +6,4 @@
 #include <gdcontact/polytope.hpp>
 #include <gdcontact/settings.hpp>
 #include <gdcontact/types.hpp>
+#include <gdcontact/version.hpp>

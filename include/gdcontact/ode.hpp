@@ -22,7 +22,7 @@ namespace gdc::ode {
 /// collider table and so forgets it. `settings` are validated (InvalidInput) and then used by
 /// every later collide() call that does not pass its own. Contacts a dCollide call returns are at
 /// most min(settings.maxContacts, flags & 0xffff).
-void install(const Settings& settings = {});
+GDCONTACT_API void install(const Settings& settings = {});
 
 /// dColliderFn-compatible: usable directly, in a near-callback, without install(). Follows ODE's
 /// contact convention (normal from o2 into o1, unit; depth ≥ 0; g1/g2 as received;
@@ -31,11 +31,11 @@ void install(const Settings& settings = {});
 /// (the defaults before any). Never throws: a failure inside gdcontact is reported through
 /// dMessage and yields 0 contacts; misuse (an unsupported class, a dConvex not made by
 /// createConvex, skip < sizeof(dContactGeom)) is reported through dError.
-int collide(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip);
+GDCONTACT_API int collide(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip);
 
 /// As above with explicit settings (not validated per call; pass settings that install() would
 /// accept). Needs no global state beyond the convex registry.
-int collide(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip,
+GDCONTACT_API int collide(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip,
             const Settings& settings);
 
 /// A real dConvex geom for the convex hull of `pointCount` points (x,y,z triples, geom-local
@@ -43,7 +43,7 @@ int collide(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip,
 /// same hull. gdcontact owns the hull data and releases it when ODE frees the geom
 /// (dGeomDestroy, or dSpaceDestroy with cleanup). Throws InvalidInput for fewer than 4 points,
 /// non-finite coordinates or points without interior.
-dGeomID createConvex(dSpaceID space, const dReal* points, unsigned pointCount);
+GDCONTACT_API dGeomID createConvex(dSpaceID space, const dReal* points, unsigned pointCount);
 
 /// dCreateConvex's layout: `planeCount` planes (a,b,c,d: unit outward normal, n·x = d on the
 /// face), `pointCount` points, and per plane its polygon (vertex count, then that many point
@@ -51,20 +51,20 @@ dGeomID createConvex(dSpaceID space, const dReal* points, unsigned pointCount);
 /// offsets matching their polygons, counter-clockwise winding, every point inside every plane,
 /// a closed surface — and copied (the caller may free its arrays). Throws InvalidInput naming the
 /// offending plane, polygon or point.
-dGeomID createConvex(dSpaceID space, const dReal* planes, unsigned planeCount,
+GDCONTACT_API dGeomID createConvex(dSpaceID space, const dReal* planes, unsigned planeCount,
                      const dReal* points, unsigned pointCount, const unsigned* polygons);
 
 /// The polytope gdcontact uses for a geom, in the geom's local frame: for a dBox, a box of its
 /// current lengths; for a dConvex made by createConvex, its hull. nullptr for every other geom
 /// (including a dConvex made with plain dCreateConvex).
-std::shared_ptr<const Polytope> polytopeOf(dGeomID geom);
+GDCONTACT_API std::shared_ptr<const Polytope> polytopeOf(dGeomID geom);
 
 /// World pose of a placeable geom (dGeomGetPosition / dGeomGetRotation, offsets included).
 /// Throws InvalidInput for a non-placeable geom (a plane or a space).
-Pose poseOf(dGeomID geom);
+GDCONTACT_API Pose poseOf(dGeomID geom);
 
 /// Number of convex hulls gdcontact currently keeps for live createConvex geoms (diagnostics:
 /// it returns to its previous value when those geoms are destroyed).
-std::size_t liveConvexCount();
+GDCONTACT_API std::size_t liveConvexCount();
 
 }  // namespace gdc::ode

@@ -10,7 +10,7 @@
 
 namespace gdc {
 
-class Polytope {
+class GDCONTACT_API Polytope {
 public:
     /// A planar face. Its vertices, counter-clockwise seen from outside, are
     /// faceVertices()[first .. first + count). Points x inside satisfy normal·x ≤ offset.

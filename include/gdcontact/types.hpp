@@ -1,6 +1,8 @@
 // Basic value types shared by every part of gdcontact: vectors, rigid poses, the error type.
 #pragma once
 
+#include <gdcontact/export.hpp>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <stdexcept>
@@ -28,7 +30,7 @@ struct Pose {
 
 /// Thrown where bad input enters gdcontact (a degenerate point set, a non-convex face list,
 /// a NaN pose, a zero-size box). The message names what is wrong.
-class InvalidInput : public std::invalid_argument {
+class GDCONTACT_API InvalidInput : public std::invalid_argument {
 public:
     explicit InvalidInput(const std::string& what) : std::invalid_argument("gdcontact: " + what) {}
 };

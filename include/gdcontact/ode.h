@@ -1,0 +1,99 @@
+/* gdcontact for C programs: the ODE drop-in collider (see <gdcontact/ode.hpp> for C++).
+ *
+ * C99, includes only <ode/ode.h>, usable from C and C++. Every function is extern "C" and never
+ * lets an exception out: failures come back as an error code or a 0 geom, with a message in
+ * gdcLastError(). Link with `pkg-config --libs gdcontact` (or CMake's gdcontact::gdcontact).
+ *
+ *     dInitODE2(0);
+ *     gdcInstall(NULL);                                   after dInitODE2, NULL: default settings
+ *     dGeomID rock = gdcCreateConvex(space, planes, planeCount, points, pointCount, polygons);
+ *     if (!rock) fprintf(stderr, "%s\n", gdcLastError());
+ *
+ * dBox, dPlane, bodies, spaces, the near callback, dCollide and dWorldStep stay as they are.
+ * Details: docs/install.md and docs/ode.md. */
+#ifndef GDCONTACT_ODE_H
+#define GDCONTACT_ODE_H
+
+#include <ode/ode.h>
+
+#if defined(__GNUC__) || defined(__clang__)
+#define GDCONTACT_C_API __attribute__((visibility("default")))
+#else
+#define GDCONTACT_C_API
+#endif
+
+#ifdef __cplusplus
+#define GDCONTACT_C_NOEXCEPT noexcept
+extern "C" {
+#else
+#define GDCONTACT_C_NOEXCEPT
+#endif
+
+/* Error codes returned by gdcInstall (0 is success). gdcLastError() says what went wrong. */
+#define GDC_OK 0
+#define GDC_ERROR_INVALID_ARGUMENT 1 /* bad settings or shape data, a null pointer where data is needed */
+#define GDC_ERROR_OUT_OF_MEMORY 2    /* an allocation failed; nothing was changed */
+#define GDC_ERROR_INTERNAL 3         /* any other failure inside gdcontact (a bug: please report it) */
+
+/* Values of gdcSettings.normalMethod (gdc::NormalMethod). */
+#define GDC_NORMAL_GROWTH_DISTANCE 0 /* the paper's growth-distance normal (default) */
+#define GDC_NORMAL_SEPARATING_AXIS 1 /* the exact minimum-translation normal (slower for big hulls) */
+
+/* The fields of gdc::Settings, in its order, with its units and meaning (settings.hpp):
+ * rayCastTolerance (relative, > 0), maxRayCastIterations (≥ 1), angularTolerance (radians, ≥ 0),
+ * margin (metres, ≥ 0), spanContactRegion (0 or not 0), maxContacts (1..16),
+ * bruteForceSupportLimit (≥ 0), coplanarTolerance (radians, ≥ 0), normalMethod (GDC_NORMAL_*).
+ * Always start from gdcDefaultSettings(): fields are only ever added at the end. */
+typedef struct gdcSettings {
+    double rayCastTolerance;
+    int maxRayCastIterations;
+    double angularTolerance;
+    double margin;
+    int spanContactRegion;
+    int maxContacts;
+    int bruteForceSupportLimit;
+    double coplanarTolerance;
+    int normalMethod;
+} gdcSettings;
+
+/* Fills *settings with gdcontact's defaults (those of gdc::Settings). Does nothing for NULL. */
+GDCONTACT_C_API void gdcDefaultSettings(gdcSettings* settings) GDCONTACT_C_NOEXCEPT;
+
+/* gdc::ode::install: routes ODE's box–box, box–convex, convex–convex, box–plane and convex–plane
+ * pairs to gdcontact. Call after dInitODE2() (and again after a new dInitODE2: dCloseODE forgets
+ * it). NULL: the defaults. Returns GDC_OK, or an error code with ODE's colliders and the
+ * settings in use left as they were (GDC_ERROR_INVALID_ARGUMENT: a field out of its range). */
+GDCONTACT_C_API int gdcInstall(const gdcSettings* settings) GDCONTACT_C_NOEXCEPT;
+
+/* gdc::ode::collide, a dColliderFn: usable in a near callback without gdcInstall. ODE's contact
+ * convention (normal from o2 into o1, depth ≥ 0, at most flags & 0xffff contacts at stride skip);
+ * uses the settings of the last gdcInstall. Returns the number of contacts; a failure inside
+ * gdcontact is reported through dMessage and gives 0, misuse (a geom class it does not handle,
+ * a dConvex not made by gdcCreateConvex*, skip < sizeof(dContactGeom)) goes to dError. */
+GDCONTACT_C_API int gdcCollide(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact,
+                               int skip) GDCONTACT_C_NOEXCEPT;
+
+/* gdc::ode::createConvex in dCreateConvex's layout: planes (a,b,c,d per face), points (x,y,z),
+ * polygons (per face its vertex count, then its point indices). The arrays are copied. A real
+ * dConvex in `space` (may be 0) whose hull gdcontact knows; freed by dGeomDestroy as usual.
+ * Returns 0 on error (gdcLastError() names the problem). */
+GDCONTACT_C_API dGeomID gdcCreateConvex(dSpaceID space, const dReal* planes, unsigned planeCount,
+                                        const dReal* points, unsigned pointCount,
+                                        const unsigned* polygons) GDCONTACT_C_NOEXCEPT;
+
+/* gdc::ode::createConvex of a point cloud: a dConvex of the convex hull of `pointCount` points
+ * (x,y,z triples, geom frame). Returns 0 on error: fewer than 4 points, NaN/Inf coordinates,
+ * points without interior (gdcLastError() says which). */
+GDCONTACT_C_API dGeomID gdcCreateConvexFromPoints(dSpaceID space, const dReal* points,
+                                                  unsigned pointCount) GDCONTACT_C_NOEXCEPT;
+
+/* This thread's last error message, "" if none. gdcInstall and gdcCreateConvex* set it when they
+ * fail and clear it when they succeed. The string stays valid until this thread's next call of
+ * one of those functions. Never NULL. */
+GDCONTACT_C_API const char* gdcLastError(void) GDCONTACT_C_NOEXCEPT;
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* GDCONTACT_ODE_H */
