@@ -84,16 +84,25 @@ Feature selectBoxFeature(const Vec3& d, const AngularTolerance& tolerance) {
 
 namespace {
 
-// collide.cpp's faceGeometry / featureGeometry for a box feature (a box face has no cap below
-// kMaxAngularTolerance), with the same arithmetic: the same Pose::apply of the same vertices.
-FeatureGeometry boxFeatureGeometry(const Polytope& box, const Feature& feature, const Pose* toCommon) {
-    FeatureGeometry geometry;
+// A box feature in A's frame: collide.cpp's FeatureGeometry without its heap-backed cap list
+// (a box face has no cap below kMaxAngularTolerance), with the same arithmetic — the same
+// Pose::apply of the same vertices (A's own vertices as they are: the identity pose changes no bit).
+struct BoxFeature {
+    FeatureType type = FeatureType::Vertex;
+    int count = 0;
+    Vec3 points[4];
+    Vec3 planeNormal = Vec3::Zero();  // faces only
+    double planeOffset = 0;
+};
+
+BoxFeature boxFeature(const Polytope& box, const Feature& feature, const Pose* toCommon) {
+    BoxFeature geometry;
     geometry.type = feature.type;
     int storage[2];
     const int* indices = nullptr;
-    const int count = featureVertices(box, feature, &indices, storage);
-    for (int i = 0; i < count; ++i)
-        geometry.points.push_back(toCommon ? toCommon->apply(box.vertices()[indices[i]]) : box.vertices()[indices[i]]);
+    geometry.count = featureVertices(box, feature, &indices, storage);
+    for (int i = 0; i < geometry.count; ++i)
+        geometry.points[i] = toCommon ? toCommon->apply(box.vertices()[indices[i]]) : box.vertices()[indices[i]];
     if (feature.type == FeatureType::Face) {
         const Polytope::Face& face = box.faces()[feature.index];
         if (toCommon) {
@@ -107,9 +116,18 @@ FeatureGeometry boxFeatureGeometry(const Polytope& box, const Feature& feature, 
     return geometry;
 }
 
+FeatureGeometry generalGeometry(const BoxFeature& feature) {
+    FeatureGeometry geometry;
+    geometry.type = feature.type;
+    for (int i = 0; i < feature.count; ++i) geometry.points.push_back(feature.points[i]);
+    geometry.planeNormal = feature.planeNormal;
+    geometry.planeOffset = feature.planeOffset;
+    return geometry;
+}
+
 // collide.cpp's refineNormal, on the same numbers: the least overlap among the picked faces'
 // normals (a box face's cap is the face alone); edge–edge, the edges' common perpendicular.
-void refineNormal(Vec3& normal, double& normalOverlap, const FeatureGeometry& a, const FeatureGeometry& b,
+void refineNormal(Vec3& normal, double& normalOverlap, const BoxFeature& a, const BoxFeature& b,
                   const MinkowskiDifference& pair) {
     Vec3 best = normal;
     double bestOverlap = INFINITY, bestCos = -2;
@@ -136,42 +154,131 @@ void refineNormal(Vec3& normal, double& normalOverlap, const FeatureGeometry& a,
     }
 }
 
-// The line {t·n} through A − B (B at `bInA`, all in A's frame). A − B is the zonotope spanned by
-// the boxes' half-edges, the intersection of the slabs |m·x + m·p| ≤ r(m) over its facet normals
-// m — the 3 + 3 face normals and the 9 edge cross products (unnormalised: each slab's bounds on t
-// are ratios) — with r(m) = halfA·|m| + halfB·|Rᵀm| and p B's centre. The line leaves A − B at the
-// least upper bound on t: the exit the general pipeline's ray cast (separationAlong) converges to.
-struct LineThroughDifference {
-    double exit = INFINITY;    // largest t with t·n in A − B
-    double entry = -INFINITY;  // smallest
-    bool missesSlab = false;   // a slab parallel to n misses the line
+// feature_intersection.cpp's intersection of two faces (intersectFeatures without caps), for two
+// box faces, step for step on the same numbers — projection, orientation, Sutherland–Hodgman clip
+// of B's quadrilateral by A's, de-duplication, lift, boundary crossings — in fixed arrays instead
+// of growing vectors. Returns false (the caller then runs the general intersection) in the
+// degenerate case where a clip step would hold more than kMaxClipPoints points.
+constexpr int kMaxClipPoints = 16;
+
+double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+struct ProjectedFace {
+    Vec2 corners[4];
+    double constant;  // lifted height along n: constant + gradient·q
+    Vec2 gradient;
+    double height(const Vec2& q) const { return constant + gradient.dot(q); }
 };
 
-LineThroughDifference lineThroughDifference(const Vec3& halfA, const Vec3& halfB, const Pose& bInA, const Vec3& n,
-                                            double slack) {
+ProjectedFace projectFace(const BoxFeature& face, const Vec3& u, const Vec3& v, const Vec3& n) {
+    ProjectedFace out;
+    for (int i = 0; i < 4; ++i) out.corners[i] = Vec2(face.points[i].dot(u), face.points[i].dot(v));
+    double area = cross2(out.corners[3], out.corners[0]);
+    for (int i = 0; i + 1 < 4; ++i) area += cross2(out.corners[i], out.corners[i + 1]);
+    if (area < 0) std::swap(out.corners[0], out.corners[3]), std::swap(out.corners[1], out.corners[2]);
+    const double normalAlongN = face.planeNormal.dot(n);
+    out.constant = face.planeOffset / normalAlongN;
+    out.gradient = -Vec2(face.planeNormal.dot(u), face.planeNormal.dot(v)) / normalAlongN;
+    return out;
+}
+
+bool intersectFaces(const BoxFeature& faceA, const BoxFeature& faceB, const Vec3& normal, double tolerance,
+                    double minimumDepth, bool spanRegion, LiftedPoints& out) {
+    Vec3 u, v;
+    planeBasis(normal, u, v);
+    const ProjectedFace a = projectFace(faceA, u, v, normal), b = projectFace(faceB, u, v, normal);
+    // Clip B's quadrilateral by the half-planes left of A's CCW edges, two buffers in turn.
+    Vec2 buffers[2][kMaxClipPoints];
+    const Vec2* current = b.corners;
+    int size = 4;
+    for (int e = 0; e < 4 && size > 0; ++e) {
+        Vec2* output = buffers[e & 1];
+        const Vec2& origin = a.corners[e];
+        const Vec2 edge = a.corners[e + 1 == 4 ? 0 : e + 1] - origin;
+        const double length = edge.norm();
+        if (!(length > 0)) return false;  // unreachable for a face within the tolerance of n: the general clip decides
+        const double slack = tolerance * length;
+        int count = 0;
+        const int n = size;
+        const bool closed = n >= 3;
+        double dp = cross2(edge, current[0] - origin);
+        for (int i = 0; i < n; ++i) {
+            const Vec2& p = current[i];
+            if (count + 2 > kMaxClipPoints) return false;
+            if (dp >= -slack) output[count++] = p;
+            if ((!closed && i + 1 == n) || n == 1) break;
+            const Vec2& q = current[i + 1 == n ? 0 : i + 1];
+            const double dq = cross2(edge, q - origin);
+            if ((dp < -slack && dq > slack) || (dp > slack && dq < -slack))
+                output[count++] = p + (q - p) * (dp / (dp - dq));
+            dp = dq;
+        }
+        current = output, size = count;
+    }
+    // Near-duplicate consecutive points (edges crossing at a vertex), as intersectPieces drops them.
+    const double toleranceSquared = tolerance * tolerance;
+    Vec2 unique[kMaxClipPoints];
+    int count = 0;
+    for (int i = 0; i < size; ++i)
+        if (count == 0 || (current[i] - unique[count - 1]).squaredNorm() > toleranceSquared) unique[count++] = current[i];
+    while (count > 1 && (unique[0] - unique[count - 1]).squaredNorm() <= toleranceSquared) --count;
+
+    auto emit = [&](const Vec2& q, double heightA, double heightB) {
+        out.push_back({q.x() * u + q.y() * v + 0.5 * (heightA + heightB) * normal, heightA - heightB, q});
+    };
+    double heightsA[kMaxClipPoints], heightsB[kMaxClipPoints];
+    for (int i = 0; i < count; ++i) heightsA[i] = a.height(unique[i]), heightsB[i] = b.height(unique[i]);
+    const int edges = count >= 3 ? count : (count == 2 ? 1 : 0);  // a polygon closes; a segment has one edge
+    const double keepDepth = minimumDepth - tolerance;
+    for (int i = 0; i < count; ++i) {
+        const double depth = heightsA[i] - heightsB[i];
+        if (depth >= keepDepth) emit(unique[i], heightsA[i], heightsB[i]);
+        if (!spanRegion || i >= edges) continue;
+        const int next = i + 1 == count ? 0 : i + 1;
+        const double t = contactBoundaryCrossing(depth, heightsA[next] - heightsB[next], minimumDepth, tolerance);
+        if (std::isnan(t)) continue;
+        const Vec2 crossing = unique[i] + t * (unique[next] - unique[i]);
+        emit(crossing, a.height(crossing), b.height(crossing));
+    }
+    return true;
+}
+
+// Whether the ray along n leaves A − B (B at `bInA`, all in A's frame) no later than `limit` plus
+// what a ray cast stopping within `castTolerance` of A − B can add: then the general pipeline's
+// depth confirmation cannot add a point. A − B is the zonotope spanned by the boxes' half-edges,
+// the intersection of the slabs |m·x + m·p| ≤ r(m) over its facet normals m — the 3 + 3 face
+// normals and the 9 edge cross products e_i × (column j of R), each of length ≤ 1 — with
+// r(m) = halfA·|m| + halfB·|Rᵀm| and p B's centre (the separating-axis radii of Gottschalk's OBB
+// test). Along the line t·n the slab bounds t by (r − s·m·p)/|m·n| (s the sign of m·n), so one
+// slab with r − s·m·p + castTolerance ≤ limit·|m·n| settles it: the line leaves (or misses) the
+// slab by then, and a point within castTolerance of A − B is within castTolerance/|m·n| (|m| ≤ 1)
+// of the slab along the line. The edge slabs come first: an overhanging face's deepest point is
+// where an edge of one box crosses an edge of the other.
+bool exitsBy(const Vec3& halfA, const Vec3& halfB, const Pose& bInA, const Vec3& n, double limit,
+             double castTolerance) {
     const Mat3& r = bInA.rotation;
     const Vec3& p = bInA.position;
-    LineThroughDifference line;
-    auto slab = [&](double radius, double mp, double mn) {
-        if (mn == 0) {
-            line.missesSlab |= std::abs(mp) > radius + slack;
-            return;
-        }
-        double low = (-radius - mp) / mn, high = (radius - mp) / mn;
-        if (mn < 0) std::swap(low, high);
-        line.entry = std::max(line.entry, low), line.exit = std::min(line.exit, high);
-    };
     const Mat3 absR = r.cwiseAbs();
-    const Vec3 nInB = r.transpose() * n, pInB = r.transpose() * p;
-    for (int i = 0; i < 3; ++i) slab(halfA[i] + halfB.dot(absR.row(i).transpose()), p[i], n[i]);
-    for (int j = 0; j < 3; ++j) slab(halfA.dot(absR.col(j)) + halfB[j], pInB[j], nInB[j]);
-    for (int i = 0; i < 3; ++i)
+    auto settles = [&](double radius, double mp, double mn) {
+        return radius - (mn < 0 ? -mp : mp) + castTolerance <= limit * std::abs(mn);
+    };
+    for (int i = 0; i < 3; ++i) {
+        const int i1 = i == 2 ? 0 : i + 1, i2 = i == 0 ? 2 : i - 1;
         for (int j = 0; j < 3; ++j) {
-            const Vec3 m = Vec3::Unit(i).cross(r.col(j));
-            const Vec3 mInB = r.row(i).transpose().cross(Vec3::Unit(j));
-            slab(halfA.dot(m.cwiseAbs()) + halfB.dot(mInB.cwiseAbs()), m.dot(p), m.dot(n));
+            const int j1 = j == 2 ? 0 : j + 1, j2 = j == 0 ? 2 : j - 1;
+            // m = e_i × c_j has m[i1] = −R(i2, j), m[i2] = R(i1, j); Rᵀm = (row i) × e_j.
+            const double mn = r(i1, j) * n[i2] - r(i2, j) * n[i1];
+            const double mp = r(i1, j) * p[i2] - r(i2, j) * p[i1];
+            const double radius = halfA[i1] * absR(i2, j) + halfA[i2] * absR(i1, j) + halfB[j1] * absR(i, j2) +
+                                  halfB[j2] * absR(i, j1);
+            if (settles(radius, mp, mn)) return true;
         }
-    return line;
+    }
+    for (int i = 0; i < 3; ++i)
+        if (settles(halfA[i] + halfB.dot(absR.row(i).transpose()), p[i], n[i])) return true;
+    for (int j = 0; j < 3; ++j)
+        if (settles(halfA.dot(absR.col(j)) + halfB[j], r.col(j).dot(p), r.col(j).dot(n))) return true;
+    return false;
 }
 
 // collide.cpp's emit: the chosen points to the manifold, mapped from A's frame to the world.
@@ -230,29 +337,34 @@ Manifold collideBoxBox(const Polytope& a, const Pose& poseA, const Polytope& b, 
     const AngularTolerance angularTolerance(settings.angularTolerance);
     manifold.featureA = selectBoxFeature(normal, angularTolerance);
     manifold.featureB = selectBoxFeature(bInA.rotation.transpose() * -normal, angularTolerance);
-    const FeatureGeometry featureA = boxFeatureGeometry(a, manifold.featureA, nullptr);
-    const FeatureGeometry featureB = boxFeatureGeometry(b, manifold.featureB, &bInA);
+    const BoxFeature featureA = boxFeature(a, manifold.featureA, nullptr);
+    const BoxFeature featureB = boxFeature(b, manifold.featureB, &bInA);
     refineNormal(normal, normalOverlap, featureA, featureB, pair);
 
-    // Stage 3: the intersection in the contact plane.
-    LiftedPoints kept =
-        intersectFeatures(featureA, featureB, normal, tolerance, -settings.margin, settings.spanContactRegion);
+    // Stage 3: the intersection in the contact plane (two faces in closed form, other pairs by the
+    // general intersection).
+    LiftedPoints kept;
+    const bool faces = featureA.type == FeatureType::Face && featureB.type == FeatureType::Face;
+    if (!faces || !intersectFaces(featureA, featureB, normal, tolerance, -settings.margin,
+                                  settings.spanContactRegion, kept)) {
+        kept.clear();
+        kept = intersectFeatures(generalGeometry(featureA), generalGeometry(featureB), normal, tolerance,
+                                 -settings.margin, settings.spanContactRegion);
+    }
     if (kept.empty()) return general();  // its fallbacks: the ray cast's witnesses or the supports' gap
     double deepest = -INFINITY;
     for (const LiftedPoint& point : kept) deepest = std::max(deepest, point.depth);
     // The depth confirmation: the general pipeline casts a ray along n through A − B where the
     // lifted points fall short of the supports' overlap, and adds a point where its exit is deeper
-    // than the deepest lifted point by more than the slack. The exact exit decides it here: below
-    // the slack by a clear margin — half the slack, less twice the cast's tolerance by which the
-    // cast can overshoot the exit (it stops outside A − B, within its tolerance) — the cast
-    // cannot add a point; otherwise the general pipeline runs and decides.
+    // than the deepest lifted point by more than the slack. The exact exit decides it here, with a
+    // clear margin — within half the slack, and allowing twice the cast's tolerance by which it can
+    // overshoot (it stops outside A − B, within its tolerance) — otherwise the general pipeline
+    // runs and decides.
     if (deepest < normalOverlap - tolerance) {
         const double slack = kDepthSlack * std::abs(deepest) + tolerance;
-        const LineThroughDifference line =
-            lineThroughDifference(a.boxHalfExtents(), b.boxHalfExtents(), bInA, normal, tolerance);
-        const double castTolerance = settings.rayCastTolerance * size;
-        const bool clearlyMisses = line.missesSlab || line.entry > line.exit + 1e-6 * size;
-        if (!clearlyMisses && !(line.exit <= deepest + 0.5 * slack - 2 * castTolerance)) return general();
+        if (!exitsBy(a.boxHalfExtents(), b.boxHalfExtents(), bInA, normal, deepest + 0.5 * slack,
+                     2 * settings.rayCastTolerance * size))
+            return general();
     }
     emit(kept, normal, poseA, settings, manifold);
     return manifold;
