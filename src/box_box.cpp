@@ -182,6 +182,39 @@ ProjectedFace projectFace(const BoxFeature& face, const Vec3& u, const Vec3& v, 
     return out;
 }
 
+// intersectPieces' last steps for a region of the plane found from two projected features:
+// near-duplicate consecutive points dropped (edges crossing at a vertex), each point lifted onto
+// both features, floating points dropped and, with `spanRegion`, the boundary crossings added.
+template <class Lift>
+void liftRegion(const Vec2* region, int size, const Lift& a, const Lift& b, const Vec3& u, const Vec3& v,
+                const Vec3& normal, double tolerance, double minimumDepth, bool spanRegion, LiftedPoints& out) {
+    const Vec2* current = region;
+    const double toleranceSquared = tolerance * tolerance;
+    Vec2 unique[kMaxClipPoints];
+    int count = 0;
+    for (int i = 0; i < size; ++i)
+        if (count == 0 || (current[i] - unique[count - 1]).squaredNorm() > toleranceSquared) unique[count++] = current[i];
+    while (count > 1 && (unique[0] - unique[count - 1]).squaredNorm() <= toleranceSquared) --count;
+
+    auto emit = [&](const Vec2& q, double heightA, double heightB) {
+        out.push_back({q.x() * u + q.y() * v + 0.5 * (heightA + heightB) * normal, heightA - heightB, q});
+    };
+    double heightsA[kMaxClipPoints], heightsB[kMaxClipPoints];
+    for (int i = 0; i < count; ++i) heightsA[i] = a.height(unique[i]), heightsB[i] = b.height(unique[i]);
+    const int edges = count >= 3 ? count : (count == 2 ? 1 : 0);  // a polygon closes; a segment has one edge
+    const double keepDepth = minimumDepth - tolerance;
+    for (int i = 0; i < count; ++i) {
+        const double depth = heightsA[i] - heightsB[i];
+        if (depth >= keepDepth) emit(unique[i], heightsA[i], heightsB[i]);
+        if (!spanRegion || i >= edges) continue;
+        const int next = i + 1 == count ? 0 : i + 1;
+        const double t = contactBoundaryCrossing(depth, heightsA[next] - heightsB[next], minimumDepth, tolerance);
+        if (std::isnan(t)) continue;
+        const Vec2 crossing = unique[i] + t * (unique[next] - unique[i]);
+        emit(crossing, a.height(crossing), b.height(crossing));
+    }
+}
+
 bool intersectFaces(const BoxFeature& faceA, const BoxFeature& faceB, const Vec3& normal, double tolerance,
                     double minimumDepth, bool spanRegion, LiftedPoints& out) {
     Vec3 u, v;
@@ -215,32 +248,61 @@ bool intersectFaces(const BoxFeature& faceA, const BoxFeature& faceB, const Vec3
         }
         current = output, size = count;
     }
-    // Near-duplicate consecutive points (edges crossing at a vertex), as intersectPieces drops them.
-    const double toleranceSquared = tolerance * tolerance;
-    Vec2 unique[kMaxClipPoints];
-    int count = 0;
-    for (int i = 0; i < size; ++i)
-        if (count == 0 || (current[i] - unique[count - 1]).squaredNorm() > toleranceSquared) unique[count++] = current[i];
-    while (count > 1 && (unique[0] - unique[count - 1]).squaredNorm() <= toleranceSquared) --count;
-
-    auto emit = [&](const Vec2& q, double heightA, double heightB) {
-        out.push_back({q.x() * u + q.y() * v + 0.5 * (heightA + heightB) * normal, heightA - heightB, q});
-    };
-    double heightsA[kMaxClipPoints], heightsB[kMaxClipPoints];
-    for (int i = 0; i < count; ++i) heightsA[i] = a.height(unique[i]), heightsB[i] = b.height(unique[i]);
-    const int edges = count >= 3 ? count : (count == 2 ? 1 : 0);  // a polygon closes; a segment has one edge
-    const double keepDepth = minimumDepth - tolerance;
-    for (int i = 0; i < count; ++i) {
-        const double depth = heightsA[i] - heightsB[i];
-        if (depth >= keepDepth) emit(unique[i], heightsA[i], heightsB[i]);
-        if (!spanRegion || i >= edges) continue;
-        const int next = i + 1 == count ? 0 : i + 1;
-        const double t = contactBoundaryCrossing(depth, heightsA[next] - heightsB[next], minimumDepth, tolerance);
-        if (std::isnan(t)) continue;
-        const Vec2 crossing = unique[i] + t * (unique[next] - unique[i]);
-        emit(crossing, a.height(crossing), b.height(crossing));
-    }
+    liftRegion(current, size, a, b, u, v, normal, tolerance, minimumDepth, spanRegion, out);
     return true;
+}
+
+// The same for two edges (feature_intersection.cpp's intersectSegments and the edge's LiftedHeight,
+// on the same numbers): the projected segments' crossing, or their overlap where they are
+// parallel and on one line, lifted onto both edges.
+struct ProjectedEdge {
+    Vec2 ends[2];
+    double constant;  // lifted height along n: constant + gradient·q
+    Vec2 gradient = Vec2::Zero();
+    double height(const Vec2& q) const { return constant + gradient.dot(q); }
+};
+
+ProjectedEdge projectEdge(const BoxFeature& edge, const Vec3& u, const Vec3& v, const Vec3& n) {
+    ProjectedEdge out;
+    const Vec3 &p0 = edge.points[0], &p1 = edge.points[1];
+    out.ends[0] = Vec2(p0.dot(u), p0.dot(v));
+    out.ends[1] = Vec2(p1.dot(u), p1.dot(v));
+    const Vec2 along = out.ends[1] - out.ends[0];
+    const double alongSquared = along.squaredNorm();
+    const double rise = (p1 - p0).dot(n);
+    out.constant = p0.dot(n);
+    if (alongSquared > 0) {
+        out.gradient = along * (rise / alongSquared);
+        out.constant -= out.gradient.dot(out.ends[0]);
+    }
+    return out;
+}
+
+void intersectEdges(const BoxFeature& edgeA, const BoxFeature& edgeB, const Vec3& normal, double tolerance,
+                    double minimumDepth, bool spanRegion, LiftedPoints& out) {
+    Vec3 u, v;
+    planeBasis(normal, u, v);
+    const ProjectedEdge a = projectEdge(edgeA, u, v, normal), b = projectEdge(edgeB, u, v, normal);
+    const Vec2 &a0 = a.ends[0], &a1 = a.ends[1], &b0 = b.ends[0], &b1 = b.ends[1];
+    Vec2 region[2];
+    int size = 0;
+    const Vec2 da = a1 - a0, db = b1 - b0;
+    const double denominator = cross2(da, db);
+    const double la = da.norm(), lb = db.norm();
+    if (std::abs(denominator) <= 1e-9 * la * lb) {
+        // Parallel: the overlap interval along A, if B lies on A's line.
+        if (std::abs(cross2(da, b0 - a0)) > tolerance * la) return;
+        const double t0 = (b0 - a0).dot(da) / (la * la), t1 = (b1 - a0).dot(da) / (la * la);
+        const double lo = std::max(0.0, std::min(t0, t1)), hi = std::min(1.0, std::max(t0, t1));
+        if (hi < lo - tolerance / la) return;
+        region[size++] = a0 + std::clamp(lo, 0.0, 1.0) * da;
+        if ((hi - lo) * la > tolerance) region[size++] = a0 + std::clamp(hi, 0.0, 1.0) * da;
+    } else {
+        const double s = cross2(b0 - a0, db) / denominator, t = cross2(b0 - a0, da) / denominator;
+        if (s < -tolerance / la || s > 1 + tolerance / la || t < -tolerance / lb || t > 1 + tolerance / lb) return;
+        region[size++] = a0 + std::clamp(s, 0.0, 1.0) * da;
+    }
+    liftRegion(region, size, a, b, u, v, normal, tolerance, minimumDepth, spanRegion, out);
 }
 
 // Whether the ray along n leaves A − B (B at `bInA`, all in A's frame) no later than `limit` plus
@@ -341,12 +403,15 @@ Manifold collideBoxBox(const Polytope& a, const Pose& poseA, const Polytope& b, 
     const BoxFeature featureB = boxFeature(b, manifold.featureB, &bInA);
     refineNormal(normal, normalOverlap, featureA, featureB, pair);
 
-    // Stage 3: the intersection in the contact plane (two faces in closed form, other pairs by the
-    // general intersection).
+    // Stage 3: the intersection in the contact plane (two faces or two edges here, other pairs by
+    // the general intersection).
     LiftedPoints kept;
     const bool faces = featureA.type == FeatureType::Face && featureB.type == FeatureType::Face;
-    if (!faces || !intersectFaces(featureA, featureB, normal, tolerance, -settings.margin,
-                                  settings.spanContactRegion, kept)) {
+    const bool edges = featureA.type == FeatureType::Edge && featureB.type == FeatureType::Edge;
+    if (edges) {
+        intersectEdges(featureA, featureB, normal, tolerance, -settings.margin, settings.spanContactRegion, kept);
+    } else if (!faces || !intersectFaces(featureA, featureB, normal, tolerance, -settings.margin,
+                                         settings.spanContactRegion, kept)) {
         kept.clear();
         kept = intersectFeatures(generalGeometry(featureA), generalGeometry(featureB), normal, tolerance,
                                  -settings.margin, settings.spanContactRegion);
