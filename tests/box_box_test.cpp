@@ -93,6 +93,15 @@ Pose poseOfKind(Kind kind, const Vec3& halfA, const Vec3& halfB, const Settings&
         const Vec3 over(symmetric(random) * halfA.x(), symmetric(random) * halfA.y(), 0);
         return Pose{rotation, over + Vec3(0, 0, halfA.z() + lowest - sink)};
     };
+    // A turned by `rotationA` and B by `rotationB` (about a vertical z), B's lowest support point
+    // above A's highest, moved by `offset` and sunk by `sink`; as B's pose in A's frame.
+    auto touching = [&](const Mat3& rotationA, const Mat3& rotationB, const Vec3& offset, double sink) {
+        const Vec3 up = Vec3::UnitZ();
+        const Vec3 highestA = rotationA * (rotationA.transpose() * up).cwiseSign().cwiseProduct(halfA);
+        const Vec3 lowestB = rotationB * -(rotationB.transpose() * up).cwiseSign().cwiseProduct(halfB);
+        const Vec3 position = highestA - lowestB + offset - sink * up;
+        return Pose{rotationA.transpose() * rotationB, rotationA.transpose() * position};
+    };
     switch (kind) {
         case Kind::RestingFace: {
             const Mat3 yaw = rotationAbout(Vec3::UnitZ(), unit(random) < 0.5 ? 0.0 : symmetric(random) * M_PI);
@@ -104,17 +113,13 @@ Pose poseOfKind(Kind kind, const Vec3& halfA, const Vec3& halfB, const Settings&
             return restOnTop(rotationAbout(axis, angle), unit(random) * 0.002 * size);
         }
         case Kind::EdgeEdge: {
-            // B with an edge down, A's top with an edge up (A is tilted by turning B the other way).
-            const Mat3 edgeDown = rotationAbout(Vec3::UnitX(), M_PI / 4 + 0.05 * symmetric(random));
-            const Mat3 crossing = rotationAbout(Vec3::UnitZ(), symmetric(random) * M_PI);
+            // A with an edge up (about y), B with an edge down (about x) turned by a random yaw.
             const Mat3 aEdgeUp = rotationAbout(Vec3::UnitY(), M_PI / 4 + 0.05 * symmetric(random));
-            Pose b = restOnTop(crossing * edgeDown, 0);
-            b = Pose{aEdgeUp.transpose() * b.rotation, aEdgeUp.transpose() * b.position};
-            // Push B down along A's (tilted) frame until the supports overlap a little.
-            const Vec3 up = aEdgeUp.transpose() * Vec3::UnitZ();
-            const double topA = up.cwiseAbs().dot(halfA), lowB = (b.rotation.transpose() * up).cwiseAbs().dot(halfB);
-            b.position += up * (topA + lowB - up.dot(b.position) - unit(random) * 0.01 * size);
-            return b;
+            const Mat3 edgeDown = rotationAbout(Vec3::UnitZ(), symmetric(random) * M_PI) *
+                                  rotationAbout(Vec3::UnitX(), M_PI / 4 + 0.05 * symmetric(random));
+            const double reach = 0.3 * std::min(halfA.minCoeff(), halfB.minCoeff());
+            return touching(aEdgeUp, edgeDown, Vec3(symmetric(random), symmetric(random), 0) * reach,
+                            unit(random) * 0.01 * size);
         }
         case Kind::VertexFace: {
             const Mat3 cornerDown = Eigen::Quaterniond::FromTwoVectors(Vec3(1, 1, 1).normalized(), -Vec3::UnitZ())
@@ -125,11 +130,11 @@ Pose poseOfKind(Kind kind, const Vec3& halfA, const Vec3& halfB, const Settings&
             return Pose{randomRotation(random), Vec3(symmetric(random), symmetric(random), symmetric(random)) *
                                                     (0.3 * halfA.minCoeff())};
         case Kind::NearlyTouching: {
-            // Along a random direction, B's support plane within ±1 % of the size of A's.
-            const Mat3 rotation = randomRotation(random);
-            const Vec3 direction = Vec3(symmetric(random), symmetric(random), symmetric(random)).normalized();
-            const double reach = direction.cwiseAbs().dot(halfA) + (rotation.transpose() * direction).cwiseAbs().dot(halfB);
-            return Pose{rotation, direction * (reach + 0.01 * size * symmetric(random))};
+            // Random orientations, B's lowest point over A's highest, from 0.5 % of the size apart
+            // to 0.5 % overlapping: every pair of features, touching or within a margin.
+            const double reach = 0.3 * std::min(halfA.minCoeff(), halfB.minCoeff());
+            return touching(randomRotation(random), randomRotation(random),
+                            Vec3(symmetric(random), symmetric(random), 0) * reach, 0.005 * size * symmetric(random));
         }
         default:
             return Pose{randomRotation(random),
@@ -210,7 +215,7 @@ TEST_CASE("box-box path equals the general pipeline on random poses of every kin
     std::mt19937 random(20261123);
     std::uniform_real_distribution<double> unit(0, 1);
     Differences found;
-    int points = 0, kinds[int(Kind::Count)] = {};
+    int points = 0, kinds[int(Kind::Count)] = {}, touching[int(Kind::Count)] = {};
     constexpr int kPoses = 105000;
     for (int trial = 0; trial < kPoses; ++trial) {
         const Vec3 halfA = randomHalfExtents(random), halfB = randomHalfExtents(random);
@@ -227,8 +232,13 @@ TEST_CASE("box-box path equals the general pipeline on random poses of every kin
         const Pose world{randomRotation(random), Vec3(unit(random), unit(random), unit(random)) * 10};
         const Pose poseB{world.rotation * relative.rotation, world.apply(relative.position)};
         compare(a, world, b, poseB, settings, found);
-        points += detail::collideGeneral(a, world, b, poseB, settings).pointCount;
+        const int count = detail::collideGeneral(a, world, b, poseB, settings).pointCount;
+        points += count;
+        touching[int(kind)] += count > 0;
     }
+    std::printf("poses in contact per kind (of %d each): resting face %d, face near the tolerance %d, edge-edge %d, "
+                "vertex-face %d, deep %d, nearly touching %d, random %d\n",
+                kinds[0], touching[0], touching[1], touching[2], touching[3], touching[4], touching[5], touching[6]);
     std::printf("box-box vs general over %d poses (%d points): largest difference, relative to the size: normal %.3g, "
                 "position %.3g, depth %.3g; %d poses differ\n",
                 found.poses, points, found.normal, found.position, found.depth, found.mismatches);
