@@ -364,6 +364,73 @@ void emit(const LiftedPoints& points, const Vec3& normal, const Pose& commonToWo
 
 }  // namespace
 
+// growth_distance.cpp's boxGrowthDistance (the closed-form growth distance of two boxes), on the
+// same numbers, without its vector temporaries: the facet normals e_i × (column j of R) and
+// (row i of R) × e_j each have one zero component, so their cross products, norms and dot
+// products are written out on the other two — the same products and sums, the zero terms (exact)
+// left out. Only what collide needs: whether it is valid, the normal, the face-overlap bound.
+// box_box_test checks it equal, bit for bit, to growthDistance on random poses.
+BoxGrowth boxGrowth(const Vec3& halfA, const Vec3& halfB, const Mat3& rotationB, const Vec3& centreOffset,
+                    double separation, double size) {
+    BoxGrowth result;
+    if (!(separation > 1e-12 * size)) return result;  // coincident contraction points
+    const Vec3 w = centreOffset / separation;
+    const Mat3 absoluteR = rotationB.cwiseAbs();
+    double exitDistance = INFINITY;
+    Vec3 tiedNormals = Vec3::Zero();
+    // `normal()` makes the axis's unit normal, only when it becomes (or ties) the exit facet.
+    auto consider = [&](double along, double supportValue, auto&& normal) {
+        if (std::abs(along) < 1e-12) return;
+        const double distance = supportValue / std::abs(along);
+        if (distance < exitDistance * (1 - 1e-12)) {
+            const Vec3 n = normal();
+            const Vec3 outward = along > 0 ? n : -n;
+            if (distance > exitDistance * (1 - 2e-12)) tiedNormals += outward;
+            else tiedNormals = outward;
+            exitDistance = std::min(distance, exitDistance);
+        } else if (distance <= exitDistance * (1 + 1e-12)) {
+            const Vec3 n = normal();
+            tiedNormals += along > 0 ? n : -n;
+        }
+    };
+    double faceOverlap = INFINITY;
+    for (int i = 0; i < 3; ++i) {
+        const double supportValue = halfA[i] + halfB.dot(absoluteR.row(i).transpose());
+        faceOverlap = std::min(faceOverlap, supportValue - std::abs(centreOffset[i]));
+        consider(w[i], supportValue, [&] { return Vec3(Vec3::Unit(i)); });
+    }
+    for (int j = 0; j < 3; ++j) {
+        const Vec3 n = rotationB.col(j);
+        const double supportValue = halfA.dot(absoluteR.col(j)) + halfB[j];
+        faceOverlap = std::min(faceOverlap, supportValue - std::abs(n.dot(centreOffset)));
+        consider(n.dot(w), supportValue, [&] { return n; });
+    }
+    for (int i = 0; i < 3; ++i) {
+        // e_i × c has components −c[i2] at i1 and c[i1] at i2 ((i, i1, i2) cyclic).
+        const int i1 = i == 2 ? 0 : i + 1, i2 = i == 0 ? 2 : i - 1;
+        for (int j = 0; j < 3; ++j) {
+            const int j1 = j == 2 ? 0 : j + 1, j2 = j == 0 ? 2 : j - 1;
+            const double n1 = -rotationB(i2, j), n2 = rotationB(i1, j);
+            const double length = std::sqrt(n1 * n1 + n2 * n2);
+            if (!(length > 1e-9)) continue;  // parallel edges: covered by the face normals
+            // (row i) × e_j has components row[j2] at j1 and −row[j1] at j2.
+            const double supportValue = (halfA[i1] * std::abs(n1) + halfA[i2] * std::abs(n2) +
+                                         (halfB[j1] * absoluteR(i, j2) + halfB[j2] * absoluteR(i, j1))) /
+                                        length;
+            const double u1 = n1 / length, u2 = n2 / length;
+            consider(u1 * w[i1] + u2 * w[i2], supportValue, [&] {
+                Vec3 n = Vec3::Zero();
+                n[i1] = u1, n[i2] = u2;
+                return n;
+            });
+        }
+    }
+    result.valid = std::isfinite(exitDistance) && exitDistance > 0 && tiedNormals.norm() > 1e-6;
+    result.normal = tiedNormals.normalized();
+    result.faceOverlapLowerBound = faceOverlap;
+    return result;
+}
+
 bool boxBoxApplies(const Polytope& a, const Polytope& b, const Settings& settings) {
     return a.isBox() && b.isBox() && settings.normalMethod == NormalMethod::GrowthDistance &&
            settings.angularTolerance >= 0 && settings.angularTolerance <= kMaxAngularTolerance;
@@ -385,8 +452,9 @@ Manifold collideBoxBox(const Polytope& a, const Pose& poseA, const Polytope& b, 
     if (centreDistance > 0 && pair.overlapAlong(centreOffset / centreDistance) < -settings.margin - tolerance)
         return manifold;
 
-    // Stage 1: the closed-form growth distance of two boxes (growth_distance.cpp).
-    const GrowthDistance growth = growthDistance(pair, settings, /*needWitnesses=*/false);
+    // Stage 1: the closed-form growth distance of two boxes.
+    const BoxGrowth growth =
+        boxGrowth(a.boxHalfExtents(), b.boxHalfExtents(), bInA.rotation, centreOffset, centreDistance, size);
     if (!growth.valid) return general();  // coincident centres: the general fallback normal
     Vec3 normal = growth.normal;
     double normalOverlap = pair.overlapAlong(normal);

@@ -5,6 +5,8 @@
 
 #include "gauss_map.hpp"
 
+#include <cmath>
+
 namespace gdc::detail {
 
 /// Whether collideBoxBox serves this pair with these settings: two boxes (Polytope::isBox()), the
@@ -16,6 +18,17 @@ bool boxBoxApplies(const Polytope& a, const Polytope& b, const Settings& setting
 /// selectFeature (gauss_map.hpp) for a box made by Polytope::box, in closed form: the same feature
 /// for a unit `direction` in the box's frame and a tolerance below 0.7 rad.
 Feature selectBoxFeature(const Vec3& direction, const AngularTolerance& tolerance);
+
+/// growthDistance's closed form for two boxes (growth_distance.cpp, boxGrowthDistance), bit for
+/// bit: valid, the normal and the face-overlap bound (B at `rotationB`, `centreOffset` = p_B − p_A
+/// of length `separation`, `size` = the sum of the radii).
+struct BoxGrowth {
+    bool valid = false;
+    Vec3 normal = Vec3::UnitZ();
+    double faceOverlapLowerBound = -INFINITY;
+};
+BoxGrowth boxGrowth(const Vec3& halfA, const Vec3& halfB, const Mat3& rotationB, const Vec3& centreOffset,
+                    double separation, double size);
 
 /// The same manifold as collideGeneral (collide_general.hpp) — normal, points, depths, count and
 /// features, to rounding — for a pair boxBoxApplies() accepts: features from the box's Gauss map

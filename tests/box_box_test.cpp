@@ -5,6 +5,8 @@
 #include "box_box.hpp"
 #include "collide_general.hpp"
 #include "contact_checks.hpp"
+#include "growth_distance.hpp"
+#include "minkowski.hpp"
 
 #include <cstdio>
 #include <random>
@@ -209,6 +211,38 @@ TEST_CASE("selectBoxFeature picks selectFeature's feature, ties and exact tolera
     }
     INFO("directions checked: " << checked);
     CHECK(checked > 100000);
+}
+
+TEST_CASE("boxGrowth is growthDistance's closed form for two boxes, bit for bit") {
+    std::mt19937 random(13);
+    std::uniform_real_distribution<double> unit(0, 1), symmetric(-1, 1);
+    Settings settings;
+    int valid = 0;
+    for (int trial = 0; trial < 50000; ++trial) {
+        const Vec3 halfA = randomHalfExtents(random), halfB = randomHalfExtents(random);
+        const Polytope a = Polytope::box(halfA), b = Polytope::box(halfB);
+        // Random, axis-aligned (zero components, parallel edges) and edge-on orientations.
+        const double kind = unit(random);
+        Mat3 rotation = randomRotation(random);
+        if (kind < 0.2) rotation = Mat3::Identity();
+        else if (kind < 0.4) rotation = rotationAbout(Vec3::Unit(trial % 3), symmetric(random) * M_PI);
+        Vec3 offset = Vec3(symmetric(random), symmetric(random), symmetric(random)) * (halfA.norm() + halfB.norm());
+        if (unit(random) < 0.2) offset[trial % 3] = 0;
+        if (unit(random) < 0.02) offset.setZero();
+        const Pose bInA{rotation, offset};
+        const detail::MinkowskiDifference pair(a, b, bInA, settings.bruteForceSupportLimit);
+        const detail::GrowthDistance general = detail::growthDistance(pair, settings, false);
+        const Vec3 centreOffset = pair.centreB - pair.centreA;
+        const detail::BoxGrowth fast = detail::boxGrowth(halfA, halfB, rotation, centreOffset, centreOffset.norm(),
+                                                         a.radius() + b.radius());
+        INFO("trial " << trial);
+        REQUIRE(fast.valid == general.valid);
+        if (!general.valid) continue;
+        ++valid;
+        REQUIRE(fast.normal == general.normal);
+        REQUIRE(fast.faceOverlapLowerBound == general.faceOverlapLowerBound);
+    }
+    CHECK(valid > 40000);
 }
 
 TEST_CASE("box-box path equals the general pipeline on random poses of every kind of box pair") {
