@@ -30,10 +30,6 @@ constexpr double kMaxAngularTolerance = 0.7;
 // than this fraction of the normal's overlap (the box pair's lower bound settles it otherwise).
 constexpr double kClearlySmallerOverlap = 0.5;
 
-// collide.cpp's depth confirmation: a point is added where the exit along n is deeper than the
-// deepest lifted point by more than this fraction of it.
-constexpr double kDepthSlack = 0.01;
-
 // Polytope::box numbers vertex v with the signs of its bits (x: 1, y: 2, z: 4), the faces
 // −x, +x, −y, +y, −z, +z, and Polytope::buildTopology the edges in the order of their (tail, head)
 // vertex pairs, tail < head: (0,1) (0,2) (0,4) (1,3) (1,5) (2,3) (2,6) (3,7) (4,5) (4,6) (5,7) (6,7).
@@ -488,17 +484,18 @@ Manifold collideBoxBox(const Polytope& a, const Pose& poseA, const Polytope& b, 
     double deepest = -INFINITY;
     for (const LiftedPoint& point : kept) deepest = std::max(deepest, point.depth);
     // The depth confirmation: the general pipeline casts a ray along n through A − B where the
-    // lifted points fall short of the supports' overlap, and adds a point where its exit is deeper
-    // than the deepest lifted point by more than the slack. The exact exit decides it here, with a
-    // clear margin — within half the slack, and allowing twice the cast's tolerance by which it can
-    // overshoot (it stops outside A − B, within its tolerance) — otherwise the general pipeline
-    // runs and decides.
-    if (deepest < normalOverlap - tolerance) {
-        const double slack = kDepthSlack * std::abs(deepest) + tolerance;
-        if (!exitsBy(a.boxHalfExtents(), b.boxHalfExtents(), bInA, normal, deepest + 0.5 * slack,
-                     2 * settings.rayCastTolerance * size))
-            return general();
-    }
+    // lifted points fall short of the supports' overlap, and adds a point where the cast's exit is
+    // deeper than the deepest lifted point by more than 1 % of it. Where one box's face, edge or
+    // corner overhangs the other's feature the exit is the deepest lifted point itself (the region
+    // of overlap ends where the features' edges cross, and those crossings are lifted points), so
+    // the exact exit, within rounding of the deepest point, settles it — leaving the whole slack to
+    // the cast's own inaccuracy (it stops outside A − B, within its tolerance). Otherwise (the
+    // overlap reaches beyond the features, 22 of the 105000 poses of box_box_test) the general
+    // pipeline runs and decides.
+    if (deepest < normalOverlap - tolerance &&
+        !exitsBy(a.boxHalfExtents(), b.boxHalfExtents(), bInA, normal, deepest + 2 * tolerance,
+                 2 * settings.rayCastTolerance * size))
+        return general();
     emit(kept, normal, poseA, settings, manifold);
     return manifold;
 }
