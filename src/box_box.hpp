@@ -32,7 +32,7 @@ BoxGrowth boxGrowth(const Vec3& halfA, const Vec3& halfB, const Mat3& rotationB,
 
 /// The same manifold as collideGeneral (collide_general.hpp) — normal, points, depths, count and
 /// features, to rounding — for a pair boxBoxApplies() accepts: features from the box's Gauss map
-/// in closed form, faces built directly from the half extents, and the depth confirmation's ray
+/// in closed form, faces and edges intersected in fixed arrays, and the depth confirmation's ray
 /// cast replaced by the exact exit of the ray through the zonotope A − B (run, with the rest of
 /// the general pipeline, only where that exit says the cast could add a point).
 Manifold collideBoxBox(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
