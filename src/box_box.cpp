@@ -152,46 +152,123 @@ void refineNormal(Vec3& normal, double& normalOverlap, const BoxFeature& a, cons
     }
 }
 
-// feature_intersection.cpp's intersection of two faces (intersectFeatures without caps), for two
-// box faces, step for step on the same numbers — projection, orientation, Sutherland–Hodgman clip
-// of B's quadrilateral by A's, de-duplication, lift, boundary crossings — in fixed arrays instead
-// of growing vectors. Returns false (the caller then runs the general intersection) in the
-// degenerate case where a clip step would hold more than kMaxClipPoints points.
+// feature_intersection.cpp's intersectFeatures for two box features (no caps), step for step on
+// the same numbers — projection (a face made counter-clockwise), the feature's lifting along n, the
+// 2-D intersection (Sutherland–Hodgman clip of the smaller feature by a face, or two segments),
+// de-duplication, lift, boundary crossings — in fixed arrays instead of growing vectors.
 constexpr int kMaxClipPoints = 16;
 
 double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-struct ProjectedFace {
-    Vec2 corners[4];
-    double constant;  // lifted height along n: constant + gradient·q
-    Vec2 gradient;
+// A box feature projected onto the contact plane, with its height along n above each planar
+// point q: constant + gradient·q (feature_intersection.cpp's LiftedHeight).
+struct ProjectedFeature {
+    Vec2 points[4];
+    int count;
+    double constant;
+    Vec2 gradient = Vec2::Zero();
     double height(const Vec2& q) const { return constant + gradient.dot(q); }
 };
 
-ProjectedFace projectFace(const BoxFeature& face, const Vec3& u, const Vec3& v, const Vec3& n) {
-    ProjectedFace out;
-    for (int i = 0; i < 4; ++i) out.corners[i] = Vec2(face.points[i].dot(u), face.points[i].dot(v));
-    double area = cross2(out.corners[3], out.corners[0]);
-    for (int i = 0; i + 1 < 4; ++i) area += cross2(out.corners[i], out.corners[i + 1]);
-    if (area < 0) std::swap(out.corners[0], out.corners[3]), std::swap(out.corners[1], out.corners[2]);
-    const double normalAlongN = face.planeNormal.dot(n);
-    out.constant = face.planeOffset / normalAlongN;
-    out.gradient = -Vec2(face.planeNormal.dot(u), face.planeNormal.dot(v)) / normalAlongN;
+ProjectedFeature project(const BoxFeature& feature, const Vec3& u, const Vec3& v, const Vec3& n) {
+    ProjectedFeature out;
+    out.count = feature.count;
+    for (int i = 0; i < out.count; ++i) out.points[i] = Vec2(feature.points[i].dot(u), feature.points[i].dot(v));
+    if (feature.type == FeatureType::Face) {
+        double area = cross2(out.points[3], out.points[0]);
+        for (int i = 0; i + 1 < 4; ++i) area += cross2(out.points[i], out.points[i + 1]);
+        if (area < 0) std::swap(out.points[0], out.points[3]), std::swap(out.points[1], out.points[2]);
+        // planeNormal·(q.x·u + q.y·v + h·n) = planeOffset, solved for h.
+        const double normalAlongN = feature.planeNormal.dot(n);
+        out.constant = feature.planeOffset / normalAlongN;
+        out.gradient = -Vec2(feature.planeNormal.dot(u), feature.planeNormal.dot(v)) / normalAlongN;
+    } else if (feature.type == FeatureType::Edge) {
+        // The point of the edge whose projection is nearest q (affine in q).
+        const Vec3 &p0 = feature.points[0], &p1 = feature.points[1];
+        const Vec2 along = out.points[1] - out.points[0];
+        const double alongSquared = along.squaredNorm();
+        const double rise = (p1 - p0).dot(n);
+        out.constant = p0.dot(n);
+        if (alongSquared > 0) {
+            out.gradient = along * (rise / alongSquared);
+            out.constant -= out.gradient.dot(out.points[0]);
+        }
+    } else {
+        out.constant = feature.points[0].dot(n);
+    }
     return out;
 }
 
-// intersectPieces' last steps for a region of the plane found from two projected features:
-// near-duplicate consecutive points dropped (edges crossing at a vertex), each point lifted onto
-// both features, floating points dropped and, with `spanRegion`, the boundary crossings added.
-template <class Lift>
-void liftRegion(const Vec2* region, int size, const Lift& a, const Lift& b, const Vec3& u, const Vec3& v,
-                const Vec3& normal, double tolerance, double minimumDepth, bool spanRegion, LiftedPoints& out) {
-    const Vec2* current = region;
+// Clips `subject` (a point, a segment or a polygon) by the half-planes left of the CCW edges of
+// the face `clip`, as clipByConvexPolygon does, two buffers in turn. Returns the size of the
+// result in `region`, or −1 where the general clip must decide (a degenerate edge, or more points
+// than the buffers hold — neither happens for a face within the angular tolerance of n).
+int clipByFace(const ProjectedFeature& subject, const ProjectedFeature& clip, double tolerance,
+               Vec2 (&buffers)[2][kMaxClipPoints], const Vec2*& region) {
+    const Vec2* current = subject.points;
+    int size = subject.count;
+    for (int e = 0; e < clip.count && size > 0; ++e) {
+        Vec2* output = buffers[e & 1];
+        const Vec2& origin = clip.points[e];
+        const Vec2 edge = clip.points[e + 1 == clip.count ? 0 : e + 1] - origin;
+        const double length = edge.norm();
+        if (!(length > 0)) return -1;
+        const double slack = tolerance * length;
+        int count = 0;
+        const int n = size;
+        const bool closed = n >= 3;
+        double dp = cross2(edge, current[0] - origin);
+        for (int i = 0; i < n; ++i) {
+            const Vec2& p = current[i];
+            if (count + 2 > kMaxClipPoints) return -1;
+            if (dp >= -slack) output[count++] = p;
+            if ((!closed && i + 1 == n) || n == 1) break;
+            const Vec2& q = current[i + 1 == n ? 0 : i + 1];
+            const double dq = cross2(edge, q - origin);
+            if ((dp < -slack && dq > slack) || (dp > slack && dq < -slack))
+                output[count++] = p + (q - p) * (dp / (dp - dq));
+            dp = dq;
+        }
+        current = output, size = count;
+    }
+    region = current;
+    return size;
+}
+
+// intersectSegments: the projected segments' crossing, or their overlap where they are parallel
+// and on one line. Returns the number of points written to `out`.
+int intersectSegments(const Vec2& a0, const Vec2& a1, const Vec2& b0, const Vec2& b1, double tolerance,
+                      Vec2* out) {
+    const Vec2 da = a1 - a0, db = b1 - b0;
+    const double denominator = cross2(da, db);
+    const double la = da.norm(), lb = db.norm();
+    int size = 0;
+    if (std::abs(denominator) <= 1e-9 * la * lb) {
+        if (std::abs(cross2(da, b0 - a0)) > tolerance * la) return 0;
+        const double t0 = (b0 - a0).dot(da) / (la * la), t1 = (b1 - a0).dot(da) / (la * la);
+        const double lo = std::max(0.0, std::min(t0, t1)), hi = std::min(1.0, std::max(t0, t1));
+        if (hi < lo - tolerance / la) return 0;
+        out[size++] = a0 + std::clamp(lo, 0.0, 1.0) * da;
+        if ((hi - lo) * la > tolerance) out[size++] = a0 + std::clamp(hi, 0.0, 1.0) * da;
+        return size;
+    }
+    const double s = cross2(b0 - a0, db) / denominator, t = cross2(b0 - a0, da) / denominator;
+    if (s < -tolerance / la || s > 1 + tolerance / la || t < -tolerance / lb || t > 1 + tolerance / lb) return 0;
+    out[size++] = a0 + std::clamp(s, 0.0, 1.0) * da;
+    return size;
+}
+
+// intersectPieces' last steps: near-duplicate consecutive points dropped (edges crossing at a
+// vertex), each point lifted onto both features, floating points dropped and, with `spanRegion`,
+// the boundary crossings added.
+void liftRegion(const Vec2* region, int size, const ProjectedFeature& a, const ProjectedFeature& b, const Vec3& u,
+                const Vec3& v, const Vec3& normal, double tolerance, double minimumDepth, bool spanRegion,
+                LiftedPoints& out) {
     const double toleranceSquared = tolerance * tolerance;
     Vec2 unique[kMaxClipPoints];
     int count = 0;
     for (int i = 0; i < size; ++i)
-        if (count == 0 || (current[i] - unique[count - 1]).squaredNorm() > toleranceSquared) unique[count++] = current[i];
+        if (count == 0 || (region[i] - unique[count - 1]).squaredNorm() > toleranceSquared) unique[count++] = region[i];
     while (count > 1 && (unique[0] - unique[count - 1]).squaredNorm() <= toleranceSquared) --count;
 
     auto emit = [&](const Vec2& q, double heightA, double heightB) {
@@ -213,94 +290,29 @@ void liftRegion(const Vec2* region, int size, const Lift& a, const Lift& b, cons
     }
 }
 
-bool intersectFaces(const BoxFeature& faceA, const BoxFeature& faceB, const Vec3& normal, double tolerance,
-                    double minimumDepth, bool spanRegion, LiftedPoints& out) {
+// The intersection of A's and B's features, lifted; false where the general intersection must
+// run instead (a vertex against an edge or a vertex, and the degenerate clips above).
+bool intersectBoxFeatures(const BoxFeature& featureA, const BoxFeature& featureB, const Vec3& normal,
+                          double tolerance, double minimumDepth, bool spanRegion, LiftedPoints& out) {
+    if (featureA.type != FeatureType::Face && featureB.type != FeatureType::Face &&
+        !(featureA.type == FeatureType::Edge && featureB.type == FeatureType::Edge))
+        return false;
     Vec3 u, v;
     planeBasis(normal, u, v);
-    const ProjectedFace a = projectFace(faceA, u, v, normal), b = projectFace(faceB, u, v, normal);
-    // Clip B's quadrilateral by the half-planes left of A's CCW edges, two buffers in turn.
+    const ProjectedFeature a = project(featureA, u, v, normal), b = project(featureB, u, v, normal);
     Vec2 buffers[2][kMaxClipPoints];
-    const Vec2* current = b.corners;
-    int size = 4;
-    for (int e = 0; e < 4 && size > 0; ++e) {
-        Vec2* output = buffers[e & 1];
-        const Vec2& origin = a.corners[e];
-        const Vec2 edge = a.corners[e + 1 == 4 ? 0 : e + 1] - origin;
-        const double length = edge.norm();
-        if (!(length > 0)) return false;  // unreachable for a face within the tolerance of n: the general clip decides
-        const double slack = tolerance * length;
-        int count = 0;
-        const int n = size;
-        const bool closed = n >= 3;
-        double dp = cross2(edge, current[0] - origin);
-        for (int i = 0; i < n; ++i) {
-            const Vec2& p = current[i];
-            if (count + 2 > kMaxClipPoints) return false;
-            if (dp >= -slack) output[count++] = p;
-            if ((!closed && i + 1 == n) || n == 1) break;
-            const Vec2& q = current[i + 1 == n ? 0 : i + 1];
-            const double dq = cross2(edge, q - origin);
-            if ((dp < -slack && dq > slack) || (dp > slack && dq < -slack))
-                output[count++] = p + (q - p) * (dp / (dp - dq));
-            dp = dq;
-        }
-        current = output, size = count;
-    }
-    liftRegion(current, size, a, b, u, v, normal, tolerance, minimumDepth, spanRegion, out);
-    return true;
-}
-
-// The same for two edges (feature_intersection.cpp's intersectSegments and the edge's LiftedHeight,
-// on the same numbers): the projected segments' crossing, or their overlap where they are
-// parallel and on one line, lifted onto both edges.
-struct ProjectedEdge {
-    Vec2 ends[2];
-    double constant;  // lifted height along n: constant + gradient·q
-    Vec2 gradient = Vec2::Zero();
-    double height(const Vec2& q) const { return constant + gradient.dot(q); }
-};
-
-ProjectedEdge projectEdge(const BoxFeature& edge, const Vec3& u, const Vec3& v, const Vec3& n) {
-    ProjectedEdge out;
-    const Vec3 &p0 = edge.points[0], &p1 = edge.points[1];
-    out.ends[0] = Vec2(p0.dot(u), p0.dot(v));
-    out.ends[1] = Vec2(p1.dot(u), p1.dot(v));
-    const Vec2 along = out.ends[1] - out.ends[0];
-    const double alongSquared = along.squaredNorm();
-    const double rise = (p1 - p0).dot(n);
-    out.constant = p0.dot(n);
-    if (alongSquared > 0) {
-        out.gradient = along * (rise / alongSquared);
-        out.constant -= out.gradient.dot(out.ends[0]);
-    }
-    return out;
-}
-
-void intersectEdges(const BoxFeature& edgeA, const BoxFeature& edgeB, const Vec3& normal, double tolerance,
-                    double minimumDepth, bool spanRegion, LiftedPoints& out) {
-    Vec3 u, v;
-    planeBasis(normal, u, v);
-    const ProjectedEdge a = projectEdge(edgeA, u, v, normal), b = projectEdge(edgeB, u, v, normal);
-    const Vec2 &a0 = a.ends[0], &a1 = a.ends[1], &b0 = b.ends[0], &b1 = b.ends[1];
-    Vec2 region[2];
-    int size = 0;
-    const Vec2 da = a1 - a0, db = b1 - b0;
-    const double denominator = cross2(da, db);
-    const double la = da.norm(), lb = db.norm();
-    if (std::abs(denominator) <= 1e-9 * la * lb) {
-        // Parallel: the overlap interval along A, if B lies on A's line.
-        if (std::abs(cross2(da, b0 - a0)) > tolerance * la) return;
-        const double t0 = (b0 - a0).dot(da) / (la * la), t1 = (b1 - a0).dot(da) / (la * la);
-        const double lo = std::max(0.0, std::min(t0, t1)), hi = std::min(1.0, std::max(t0, t1));
-        if (hi < lo - tolerance / la) return;
-        region[size++] = a0 + std::clamp(lo, 0.0, 1.0) * da;
-        if ((hi - lo) * la > tolerance) region[size++] = a0 + std::clamp(hi, 0.0, 1.0) * da;
+    const Vec2* region = buffers[0];
+    int size;
+    if (a.count == 2 && b.count == 2) {
+        size = intersectSegments(a.points[0], a.points[1], b.points[0], b.points[1], tolerance, buffers[0]);
     } else {
-        const double s = cross2(b0 - a0, db) / denominator, t = cross2(b0 - a0, da) / denominator;
-        if (s < -tolerance / la || s > 1 + tolerance / la || t < -tolerance / lb || t > 1 + tolerance / lb) return;
-        region[size++] = a0 + std::clamp(s, 0.0, 1.0) * da;
+        // intersect2d: the feature with fewer points is clipped by the other (B's when as many).
+        const bool aClips = a.count >= b.count;
+        size = clipByFace(aClips ? b : a, aClips ? a : b, tolerance, buffers, region);
+        if (size < 0) return false;
     }
     liftRegion(region, size, a, b, u, v, normal, tolerance, minimumDepth, spanRegion, out);
+    return true;
 }
 
 // Whether the ray along n leaves A − B (B at `bInA`, all in A's frame) no later than `limit` plus
@@ -469,15 +481,11 @@ Manifold collideBoxBox(const Polytope& a, const Pose& poseA, const Polytope& b, 
     const BoxFeature featureB = boxFeature(b, manifold.featureB, &bInA);
     refineNormal(normal, normalOverlap, featureA, featureB, pair);
 
-    // Stage 3: the intersection in the contact plane (two faces or two edges here, other pairs by
-    // the general intersection).
+    // Stage 3: the intersection in the contact plane (the general one for a vertex against an
+    // edge or a vertex).
     LiftedPoints kept;
-    const bool faces = featureA.type == FeatureType::Face && featureB.type == FeatureType::Face;
-    const bool edges = featureA.type == FeatureType::Edge && featureB.type == FeatureType::Edge;
-    if (edges) {
-        intersectEdges(featureA, featureB, normal, tolerance, -settings.margin, settings.spanContactRegion, kept);
-    } else if (!faces || !intersectFaces(featureA, featureB, normal, tolerance, -settings.margin,
-                                         settings.spanContactRegion, kept)) {
+    if (!intersectBoxFeatures(featureA, featureB, normal, tolerance, -settings.margin, settings.spanContactRegion,
+                              kept)) {
         kept.clear();
         kept = intersectFeatures(generalGeometry(featureA), generalGeometry(featureB), normal, tolerance,
                                  -settings.margin, settings.spanContactRegion);
