@@ -2,6 +2,7 @@
 // (precision far from the origin) and mapped to the world at the end.
 #include <gdcontact/collide.hpp>
 
+#include "box_box.hpp"
 #include "collide_general.hpp"
 #include "feature_intersection.hpp"
 #include "gauss_map.hpp"
@@ -525,6 +526,7 @@ Manifold collideGeneral(const Polytope& a, const Pose& poseA, const HalfSpace& b
 // The public queries: the specialised paths where they apply, the general pipeline otherwise.
 Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
                  const Settings& settings) {
+    if (detail::boxBoxApplies(a, b, settings)) return detail::collideBoxBox(a, poseA, b, poseB, settings);
     return detail::collideGeneral(a, poseA, b, poseB, settings);
 }
 

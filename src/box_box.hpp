@@ -1,0 +1,41 @@
+// The box–box path: the general pipeline's answer for two boxes, from the boxes' closed forms.
+#pragma once
+
+#include <gdcontact/collide.hpp>
+
+#include "gauss_map.hpp"
+
+#include <cmath>
+
+namespace gdc::detail {
+
+/// Whether collideBoxBox serves this pair with these settings: two boxes (Polytope::isBox()), the
+/// growth-distance normal, and an angular tolerance in [0, 0.7] rad (below π/4, where a box's
+/// Gauss map gives each direction at most one face and no face a cap; larger tolerances go to
+/// the general pipeline).
+bool boxBoxApplies(const Polytope& a, const Polytope& b, const Settings& settings);
+
+/// selectFeature (gauss_map.hpp) for a box made by Polytope::box, in closed form: the same feature
+/// for a unit `direction` in the box's frame and a tolerance below 0.7 rad.
+Feature selectBoxFeature(const Vec3& direction, const AngularTolerance& tolerance);
+
+/// growthDistance's closed form for two boxes (growth_distance.cpp, boxGrowthDistance), bit for
+/// bit: valid, the normal and the face-overlap bound (B at `rotationB`, `centreOffset` = p_B − p_A
+/// of length `separation`, `size` = the sum of the radii).
+struct BoxGrowth {
+    bool valid = false;
+    Vec3 normal = Vec3::UnitZ();
+    double faceOverlapLowerBound = -INFINITY;
+};
+BoxGrowth boxGrowth(const Vec3& halfA, const Vec3& halfB, const Mat3& rotationB, const Vec3& centreOffset,
+                    double separation, double size);
+
+/// The same manifold as collideGeneral (collide_general.hpp) — normal, points, depths, count and
+/// features, to rounding — for a pair boxBoxApplies() accepts: features from the box's Gauss map
+/// in closed form, faces and edges intersected in fixed arrays, and the depth confirmation's ray
+/// cast replaced by the exact exit of the ray through the zonotope A − B (run, with the rest of
+/// the general pipeline, only where that exit says the cast could add a point).
+Manifold collideBoxBox(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
+                       const Settings& settings);
+
+}  // namespace gdc::detail

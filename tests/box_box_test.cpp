@@ -1,0 +1,344 @@
+// The box–box path (box_box.cpp) against the general pipeline it replaces (collideGeneral): the
+// same manifold — normal, points, depths, count, features — on random poses of every kind of box
+// pair, and pinned cases where the two could part (a face exactly at the angular tolerance, a
+// very thin box, exactly touching boxes, coincident centres).
+#include "box_box.hpp"
+#include "collide_general.hpp"
+#include "contact_checks.hpp"
+#include "growth_distance.hpp"
+#include "minkowski.hpp"
+
+#include <cstdio>
+#include <random>
+
+using namespace gdc;
+using namespace gdc::testing;
+
+namespace {
+
+Mat3 randomRotation(std::mt19937& random) {
+    std::normal_distribution<double> normal;
+    Eigen::Quaterniond q(normal(random), normal(random), normal(random), normal(random));
+    return q.normalized().toRotationMatrix();
+}
+
+// A small rotation: about a random axis by an angle in [-limit, limit].
+Mat3 tilt(std::mt19937& random, double limit) {
+    std::normal_distribution<double> normal;
+    std::uniform_real_distribution<double> angle(-limit, limit);
+    return rotationAbout(Vec3(normal(random), normal(random), normal(random)).normalized(), angle(random));
+}
+
+Vec3 randomHalfExtents(std::mt19937& random) {
+    std::uniform_real_distribution<double> unit(0, 1), extent(0.05, 2.0);
+    const double kind = unit(random);
+    Vec3 half(extent(random), extent(random), extent(random));
+    if (kind < 0.2) half.setConstant(half.x());  // cube
+    else if (kind < 0.35) half[static_cast<int>(unit(random) * 3) % 3] = 0.002 + 0.01 * unit(random);  // plate
+    else if (kind < 0.45) half *= 10;  // large, against a box of the usual size
+    else if (kind < 0.55) half *= 0.05;  // small
+    return half;
+}
+
+// The largest differences found, relative to the pair's size.
+struct Differences {
+    double normal = 0, position = 0, depth = 0;
+    int poses = 0, mismatches = 0;
+};
+
+// Runs both paths; returns false (and prints the pose) when count or features differ, or a value
+// differs by more than `relative` × size.
+bool compare(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB, const Settings& settings,
+             Differences& found, double relative = 1e-9) {
+    const Manifold fast = detail::collideBoxBox(a, poseA, b, poseB, settings);
+    const Manifold general = detail::collideGeneral(a, poseA, b, poseB, settings);
+    ++found.poses;
+    const double size = a.radius() + b.radius();
+    bool same = fast.pointCount == general.pointCount && fast.featureA.type == general.featureA.type &&
+                fast.featureA.index == general.featureA.index && fast.featureB.type == general.featureB.type &&
+                fast.featureB.index == general.featureB.index;
+    if (same && fast.pointCount > 0) {
+        found.normal = std::max(found.normal, (fast.normal - general.normal).norm());
+        same = (fast.normal - general.normal).norm() <= relative;
+        for (int i = 0; i < fast.pointCount; ++i) {
+            const double position = (fast.points[i].position - general.points[i].position).norm() / size;
+            const double depth = std::abs(fast.points[i].depth - general.points[i].depth) / size;
+            found.position = std::max(found.position, position);
+            found.depth = std::max(found.depth, depth);
+            same = same && position <= relative && depth <= relative;
+        }
+    }
+    if (!same) {
+        ++found.mismatches;
+        if (found.mismatches <= 5) {
+            std::printf("box-box mismatch: halfA %.17g %.17g %.17g halfB %.17g %.17g %.17g\n", a.boxHalfExtents().x(),
+                        a.boxHalfExtents().y(), a.boxHalfExtents().z(), b.boxHalfExtents().x(), b.boxHalfExtents().y(),
+                        b.boxHalfExtents().z());
+            std::printf("  fast: %d points, features %d:%d %d:%d; general: %d points, features %d:%d %d:%d\n",
+                        fast.pointCount, int(fast.featureA.type), fast.featureA.index, int(fast.featureB.type),
+                        fast.featureB.index, general.pointCount, int(general.featureA.type), general.featureA.index,
+                        int(general.featureB.type), general.featureB.index);
+        }
+    }
+    return same;
+}
+
+enum class Kind { RestingFace, FaceNearTolerance, EdgeEdge, VertexFace, Deep, NearlyTouching, Random, Count };
+
+// A pose of B against A (A at the identity) of the given kind; the caller moves both together.
+Pose poseOfKind(Kind kind, const Vec3& halfA, const Vec3& halfB, const Settings& settings, std::mt19937& random) {
+    std::uniform_real_distribution<double> unit(0, 1), symmetric(-1, 1);
+    const double size = halfA.norm() + halfB.norm();
+    auto restOnTop = [&](const Mat3& rotation, double sink) {
+        // B's lowest point along z just `sink` below A's top face, over a random point of that face.
+        const double lowest = (rotation.transpose() * Vec3::UnitZ()).cwiseAbs().dot(halfB);
+        const Vec3 over(symmetric(random) * halfA.x(), symmetric(random) * halfA.y(), 0);
+        return Pose{rotation, over + Vec3(0, 0, halfA.z() + lowest - sink)};
+    };
+    // A turned by `rotationA` and B by `rotationB` (about a vertical z), B's lowest support point
+    // above A's highest, moved by `offset` and sunk by `sink`; as B's pose in A's frame.
+    auto touching = [&](const Mat3& rotationA, const Mat3& rotationB, const Vec3& offset, double sink) {
+        const Vec3 up = Vec3::UnitZ();
+        const Vec3 highestA = rotationA * (rotationA.transpose() * up).cwiseSign().cwiseProduct(halfA);
+        const Vec3 lowestB = rotationB * -(rotationB.transpose() * up).cwiseSign().cwiseProduct(halfB);
+        const Vec3 position = highestA - lowestB + offset - sink * up;
+        return Pose{rotationA.transpose() * rotationB, rotationA.transpose() * position};
+    };
+    switch (kind) {
+        case Kind::RestingFace: {
+            const Mat3 yaw = rotationAbout(Vec3::UnitZ(), unit(random) < 0.5 ? 0.0 : symmetric(random) * M_PI);
+            return restOnTop(tilt(random, 0.01) * yaw, (symmetric(random) * 0.5 + 0.5) * 0.002 * size);
+        }
+        case Kind::FaceNearTolerance: {
+            const double angle = settings.angularTolerance * (1 + 0.2 * symmetric(random));
+            const Vec3 axis = rotationAbout(Vec3::UnitZ(), symmetric(random) * M_PI) * Vec3::UnitX();
+            return restOnTop(rotationAbout(axis, angle), unit(random) * 0.002 * size);
+        }
+        case Kind::EdgeEdge: {
+            // A with an edge up (about y), B with an edge down (about x) turned by a random yaw.
+            const Mat3 aEdgeUp = rotationAbout(Vec3::UnitY(), M_PI / 4 + 0.05 * symmetric(random));
+            const Mat3 edgeDown = rotationAbout(Vec3::UnitZ(), symmetric(random) * M_PI) *
+                                  rotationAbout(Vec3::UnitX(), M_PI / 4 + 0.05 * symmetric(random));
+            const double reach = 0.3 * std::min(halfA.minCoeff(), halfB.minCoeff());
+            return touching(aEdgeUp, edgeDown, Vec3(symmetric(random), symmetric(random), 0) * reach,
+                            unit(random) * 0.01 * size);
+        }
+        case Kind::VertexFace: {
+            const Mat3 cornerDown = Eigen::Quaterniond::FromTwoVectors(Vec3(1, 1, 1).normalized(), -Vec3::UnitZ())
+                                        .toRotationMatrix();
+            return restOnTop(tilt(random, 0.2) * cornerDown, unit(random) * 0.01 * size);
+        }
+        case Kind::Deep:
+            return Pose{randomRotation(random), Vec3(symmetric(random), symmetric(random), symmetric(random)) *
+                                                    (0.3 * halfA.minCoeff())};
+        case Kind::NearlyTouching: {
+            // Random orientations, B's lowest point over A's highest, from 0.5 % of the size apart
+            // to 0.5 % overlapping: every pair of features, touching or within a margin.
+            const double reach = 0.3 * std::min(halfA.minCoeff(), halfB.minCoeff());
+            return touching(randomRotation(random), randomRotation(random),
+                            Vec3(symmetric(random), symmetric(random), 0) * reach, 0.005 * size * symmetric(random));
+        }
+        default:
+            return Pose{randomRotation(random),
+                        Vec3(symmetric(random), symmetric(random), symmetric(random)) * (0.8 * size)};
+    }
+}
+
+}  // namespace
+
+TEST_CASE("box numbering: the faces, normals and edges box_box.cpp assumes") {
+    std::mt19937 random(11);
+    for (int trial = 0; trial < 200; ++trial) {
+        const Vec3 half = randomHalfExtents(random);
+        const Polytope box = Polytope::box(half);
+        REQUIRE(box.faces().size() == 6);
+        for (int axis = 0; axis < 3; ++axis)
+            for (int positive = 0; positive < 2; ++positive) {
+                const Polytope::Face& face = box.faces()[2 * axis + positive];
+                REQUIRE(face.normal == (positive ? 1.0 : -1.0) * Vec3::Unit(axis));  // exactly
+                REQUIRE(face.offset == half[axis]);
+            }
+        const int expected[12][2] = {{0, 1}, {0, 2}, {0, 4}, {1, 3}, {1, 5}, {2, 3},
+                                     {2, 6}, {3, 7}, {4, 5}, {4, 6}, {5, 7}, {6, 7}};
+        REQUIRE(box.edges().size() == 12);
+        for (int e = 0; e < 12; ++e) {
+            REQUIRE(box.edges()[e].tail == expected[e][0]);
+            REQUIRE(box.edges()[e].head == expected[e][1]);
+        }
+        for (int v = 0; v < 8; ++v)
+            for (int axis = 0; axis < 3; ++axis)
+                REQUIRE(box.vertices()[v][axis] == ((v >> axis) & 1 ? half[axis] : -half[axis]));
+    }
+}
+
+TEST_CASE("selectBoxFeature picks selectFeature's feature, ties and exact tolerance boundaries included") {
+    std::mt19937 random(12);
+    std::uniform_real_distribution<double> symmetric(-1, 1), unit(0, 1);
+    const Polytope box = Polytope::box(Vec3(0.3, 1.1, 0.02));
+    int checked = 0;
+    for (double radians : {0.0, 0.01, 0.05, 0.3, 0.7}) {
+        const detail::AngularTolerance tolerance(radians);
+        auto check = [&](Vec3 d) {
+            const Feature general = detail::selectFeature(box, d, box.supportVertex(d), tolerance);
+            const Feature fast = detail::selectBoxFeature(d, tolerance);
+            INFO("direction " << d.transpose() << " tolerance " << radians);
+            REQUIRE(fast.type == general.type);
+            REQUIRE(fast.index == general.index);
+            ++checked;
+        };
+        for (int trial = 0; trial < 20000; ++trial) {
+            Vec3 d(symmetric(random), symmetric(random), symmetric(random));
+            // Components exactly 0, and exactly at the tolerance's cosine and sine, in any sign.
+            const double pick = unit(random);
+            const int axis = static_cast<int>(unit(random) * 3) % 3, other = (axis + 1) % 3;
+            if (pick < 0.2) d[axis] = unit(random) < 0.5 ? 0.0 : -0.0;
+            if (pick < 0.1) d[other] = 0;
+            d.normalize();
+            if (pick > 0.7) {
+                // Near a face or an edge's arc: one component at (or an ulp from) cos, one at sin.
+                const double sign = unit(random) < 0.5 ? -1 : 1;
+                const double c = pick > 0.85 ? tolerance.cosine : tolerance.sine;
+                d = Vec3::Zero();
+                d[axis] = sign * c;
+                d[other] = unit(random) < 0.5 ? std::sqrt(std::max(0.0, 1 - c * c)) : 0.0;
+                d[3 - axis - other] = unit(random) < 0.3 ? 0.0 : symmetric(random) * 1e-3;
+                if (unit(random) < 0.3) d[axis] = std::nextafter(d[axis], unit(random) < 0.5 ? 2.0 : -2.0);
+            }
+            check(d);
+        }
+        for (int axis = 0; axis < 3; ++axis)
+            for (double sign : {-1.0, 1.0}) check(sign * Vec3::Unit(axis));
+    }
+    INFO("directions checked: " << checked);
+    CHECK(checked > 100000);
+}
+
+TEST_CASE("boxGrowth is growthDistance's closed form for two boxes, bit for bit") {
+    std::mt19937 random(13);
+    std::uniform_real_distribution<double> unit(0, 1), symmetric(-1, 1);
+    Settings settings;
+    int valid = 0;
+    for (int trial = 0; trial < 50000; ++trial) {
+        const Vec3 halfA = randomHalfExtents(random), halfB = randomHalfExtents(random);
+        const Polytope a = Polytope::box(halfA), b = Polytope::box(halfB);
+        // Random, axis-aligned (zero components, parallel edges) and edge-on orientations.
+        const double kind = unit(random);
+        Mat3 rotation = randomRotation(random);
+        if (kind < 0.2) rotation = Mat3::Identity();
+        else if (kind < 0.4) rotation = rotationAbout(Vec3::Unit(trial % 3), symmetric(random) * M_PI);
+        Vec3 offset = Vec3(symmetric(random), symmetric(random), symmetric(random)) * (halfA.norm() + halfB.norm());
+        if (unit(random) < 0.2) offset[trial % 3] = 0;
+        if (unit(random) < 0.02) offset.setZero();
+        const Pose bInA{rotation, offset};
+        const detail::MinkowskiDifference pair(a, b, bInA, settings.bruteForceSupportLimit);
+        const detail::GrowthDistance general = detail::growthDistance(pair, settings, false);
+        const Vec3 centreOffset = pair.centreB - pair.centreA;
+        const detail::BoxGrowth fast = detail::boxGrowth(halfA, halfB, rotation, centreOffset, centreOffset.norm(),
+                                                         a.radius() + b.radius());
+        INFO("trial " << trial);
+        REQUIRE(fast.valid == general.valid);
+        if (!general.valid) continue;
+        ++valid;
+        REQUIRE(fast.normal == general.normal);
+        REQUIRE(fast.faceOverlapLowerBound == general.faceOverlapLowerBound);
+    }
+    CHECK(valid > 40000);
+}
+
+TEST_CASE("box-box path equals the general pipeline on random poses of every kind of box pair") {
+    std::mt19937 random(20261123);
+    std::uniform_real_distribution<double> unit(0, 1);
+    Differences found;
+    int points = 0, kinds[int(Kind::Count)] = {}, touching[int(Kind::Count)] = {};
+    constexpr int kPoses = 105000;
+    for (int trial = 0; trial < kPoses; ++trial) {
+        const Vec3 halfA = randomHalfExtents(random), halfB = randomHalfExtents(random);
+        const Polytope a = Polytope::box(halfA), b = Polytope::box(halfB);
+        Settings settings;
+        settings.maxContacts = 1 + static_cast<int>(unit(random) * 8) % 8;
+        settings.margin = unit(random) < 0.5 ? 0.0 : unit(random) * 0.02 * (halfA.norm() + halfB.norm());
+        settings.spanContactRegion = unit(random) < 0.5;
+        if (unit(random) < 0.2) settings.angularTolerance = unit(random) * 0.7;
+        const Kind kind = static_cast<Kind>(trial % int(Kind::Count));
+        ++kinds[int(kind)];
+        const Pose relative = poseOfKind(kind, halfA, halfB, settings, random);
+        // Both moved to a random place (A's frame is where the pipeline computes).
+        const Pose world{randomRotation(random), Vec3(unit(random), unit(random), unit(random)) * 10};
+        const Pose poseB{world.rotation * relative.rotation, world.apply(relative.position)};
+        compare(a, world, b, poseB, settings, found);
+        const int count = detail::collideGeneral(a, world, b, poseB, settings).pointCount;
+        points += count;
+        touching[int(kind)] += count > 0;
+    }
+    std::printf("poses in contact per kind (of %d each): resting face %d, face near the tolerance %d, edge-edge %d, "
+                "vertex-face %d, deep %d, nearly touching %d, random %d\n",
+                kinds[0], touching[0], touching[1], touching[2], touching[3], touching[4], touching[5], touching[6]);
+    std::printf("box-box vs general over %d poses (%d points): largest difference, relative to the size: normal %.3g, "
+                "position %.3g, depth %.3g; %d poses differ\n",
+                found.poses, points, found.normal, found.position, found.depth, found.mismatches);
+    WARN("box-box vs general over " << found.poses << " poses: largest normal difference " << found.normal
+                                    << ", position " << found.position << ", depth " << found.depth
+                                    << " (relative to size); " << found.mismatches << " poses differ");
+    CHECK(found.mismatches == 0);
+    CHECK(found.normal <= 1e-9);
+    CHECK(found.position <= 1e-9);
+    CHECK(found.depth <= 1e-9);
+}
+
+TEST_CASE("box-box pinned: a face tilted exactly at the angular tolerance") {
+    const Polytope base = Polytope::box(Vec3(1.0, 0.8, 0.5)), top = Polytope::box(Vec3(0.4, 0.3, 0.2));
+    Settings settings;
+    Differences found;
+    for (double scale : {1 - 1e-12, 1.0, 1 + 1e-12}) {
+        const double angle = settings.angularTolerance * scale;
+        const Mat3 rotation = rotationAbout(Vec3::UnitX(), angle);
+        const double lowest = (rotation.transpose() * Vec3::UnitZ()).cwiseAbs().dot(Vec3(0.4, 0.3, 0.2));
+        const Pose poseB{rotation, Vec3(0.1, 0.05, 0.5 + lowest - 1e-3)};
+        REQUIRE(compare(base, Pose{}, top, poseB, settings, found));
+        const Manifold m = detail::collideBoxBox(base, Pose{}, top, poseB, settings);
+        REQUIRE(m.pointCount > 0);
+        CHECK(m.featureA.type == FeatureType::Face);  // A's top face: the normal lies along it
+        CHECK(m.featureA.index == 5);
+    }
+}
+
+TEST_CASE("box-box pinned: a very thin box, exactly touching boxes, coincident centres") {
+    Settings settings;
+    Differences found;
+    SECTION("a plate 2e-6 thick on a box and a box on the plate") {
+        const Polytope plate = Polytope::box(Vec3(0.5, 0.5, 1e-6)), block = Polytope::box(Vec3(0.3, 0.2, 0.1));
+        for (double sink : {0.0, 5e-7, 1e-4}) {
+            const Pose onPlate{rotationAbout(Vec3(1, 2, 0).normalized(), 0.003), Vec3(0.05, -0.1, 1e-6 + 0.1 - sink)};
+            REQUIRE(compare(plate, Pose{}, block, onPlate, settings, found));
+            REQUIRE(compare(block, Pose{}, plate, Pose{Mat3::Identity(), Vec3(0.02, 0, 0.1 + 1e-6 - sink)}, settings,
+                            found));
+        }
+    }
+    SECTION("exactly touching: depth 0 at the four corners of the smaller face") {
+        const Polytope cube = Polytope::box(Vec3(0.5, 0.5, 0.5)), small = Polytope::box(Vec3(0.25, 0.25, 0.25));
+        const Pose touching{Mat3::Identity(), Vec3(0.1, 0.1, 0.75)};
+        REQUIRE(compare(cube, Pose{}, small, touching, settings, found));
+        const Manifold m = detail::collideBoxBox(cube, Pose{}, small, touching, settings);
+        REQUIRE(m.pointCount == 4);
+        for (int i = 0; i < 4; ++i) CHECK(m.points[i].depth == 0);
+        CHECK(m.normal == Vec3::UnitZ());
+    }
+    SECTION("coincident centres: the general fallback normal, a full manifold") {
+        const Polytope a = Polytope::box(Vec3(0.5, 0.4, 0.3)), b = Polytope::box(Vec3(0.2, 0.6, 0.1));
+        for (const Mat3& rotation : {Mat3(Mat3::Identity()), rotationAbout(Vec3(1, 1, 0).normalized(), 0.4)}) {
+            REQUIRE(compare(a, Pose{}, b, Pose{rotation, Vec3::Zero()}, settings, found));
+            CHECK(detail::collideBoxBox(a, Pose{}, b, Pose{rotation, Vec3::Zero()}, settings).pointCount > 0);
+        }
+    }
+    SECTION("collide() dispatches boxes to the box path, other settings to the general pipeline") {
+        const Polytope a = Polytope::box(Vec3(0.5, 0.4, 0.3)), b = Polytope::box(Vec3(0.2, 0.6, 0.1));
+        CHECK(detail::boxBoxApplies(a, b, settings));
+        Settings wide = settings;
+        wide.angularTolerance = 0.8;
+        CHECK_FALSE(detail::boxBoxApplies(a, b, wide));
+        Settings sat = settings;
+        sat.normalMethod = NormalMethod::SeparatingAxis;
+        CHECK_FALSE(detail::boxBoxApplies(a, b, sat));
+    }
+    CHECK(found.mismatches == 0);
+}
