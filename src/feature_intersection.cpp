@@ -28,13 +28,14 @@ Polygon2 clipByConvexPolygon(const Polygon2& subject, const Polygon2& clip, doub
     // Two buffers in turn; the subject itself is read by the first edge (no copy).
     Polygon2 buffers[2];
     const Polygon2* input = &subject;
+    int written = 0;  // buffers filled so far: the next one is never the one being read
     for (std::size_t e = 0; e < clip.size() && !input->empty(); ++e) {
         const Polygon2& current = *input;
-        Polygon2& next = buffers[e & 1];
         const Vec2& a = clip[e];
         Vec2 edge = clip[e + 1 == clip.size() ? 0 : e + 1] - a;
         double length = edge.norm();
-        if (!(length > 0)) continue;
+        if (!(length > 0)) continue;  // a repeated corner: no half-plane
+        Polygon2& next = buffers[written++ & 1];
         // Signed distance scaled by the edge length (> 0 inside); the slack is scaled to match.
         const double slack = tolerance * length;
         auto distance = [&](const Vec2& p) { return cross2(edge, p - a); };

@@ -112,3 +112,23 @@ TEST_CASE("a vertex inside a face projects to one point; outside it to none") {
     v.points[0] = Vec3(1.2, 0, -0.03);
     CHECK(intersectFeatures(a, v, Vec3::UnitZ(), 1e-12).empty());
 }
+
+TEST_CASE("a face with a repeated corner clips as the same face without it") {
+    // A zero-length edge of the clipping face gives no half-plane; skipping it once emptied the
+    // buffer being read, so the whole intersection vanished.
+    const std::vector<Vec2> square = {Vec2(-1, -1), Vec2(1, -1), Vec2(1, 1), Vec2(-1, 1)};
+    std::vector<Vec2> repeated = square;
+    repeated.insert(repeated.begin() + 2, square[2]);  // corner (1, 1) twice
+    const std::vector<Vec2> small = {Vec2(-0.5, -0.5), Vec2(0.5, -0.5), Vec2(0.5, 0.5), Vec2(-0.5, 0.5)};
+    for (bool repeatedOnA : {true, false}) {
+        const FeatureGeometry a = face(repeatedOnA ? repeated : small, 0.0, 0.0, true);
+        const FeatureGeometry b = face(repeatedOnA ? small : repeated, -0.01, 0.0, false);
+        const LiftedPoints points = intersectFeatures(a, b, Vec3::UnitZ(), 1e-9);
+        REQUIRE(points.size() == 4);
+        for (const LiftedPoint& p : points) {
+            CHECK(std::abs(std::abs(p.position.x()) - 0.5) < 1e-12);
+            CHECK(std::abs(std::abs(p.position.y()) - 0.5) < 1e-12);
+            CHECK(p.depth == Approx(0.01));
+        }
+    }
+}
