@@ -52,10 +52,19 @@ Pose readPose(dGeomID geom) {
     dError(d_ERR_UASSERT, "%s", ("gdcontact: " + what).c_str());
 }
 
-[[noreturn]] void unsupportedClass(int geomClass) {
+[[noreturn, gnu::cold, gnu::noinline]] void unsupportedClass(int geomClass) {
     misuse(std::string("gdc::ode::collide handles box, convex (gdc::ode::createConvex) and plane "
                        "geoms; it got a ") + className(geomClass) +
            " (leave that pair to ODE: install() overrides only the supported pairs)");
+}
+
+// The polytope (geom frame) of a box or createConvex geom; misuse for any other class.
+[[noreturn, gnu::cold, gnu::noinline]] void notCreatedByGdcontact() {
+    misuse("a dConvex geom made with plain dCreateConvex reached gdc::ode::collide. ODE "
+           "0.16.2 gives no access to a dConvex's data, so gdcontact cannot collide it. "
+           "Create the geom with gdc::ode::createConvex(space, planes, planeCount, points, "
+           "pointCount, polygons) (the same arguments as dCreateConvex) or "
+           "gdc::ode::createConvex(space, points, pointCount) instead.");
 }
 
 // The polytope (geom frame) of a box or createConvex geom; misuse for any other class.
@@ -67,12 +76,7 @@ const Polytope& polytopeFor(dGeomID geom, int geomClass, detail::ThreadCache& ca
     }
     if (geomClass != dConvexClass) unsupportedClass(geomClass);
     const Polytope* hull = detail::borrowedConvex(cache, geom);
-    if (!hull)
-        misuse("a dConvex geom made with plain dCreateConvex reached gdc::ode::collide. ODE "
-               "0.16.2 gives no access to a dConvex's data, so gdcontact cannot collide it. "
-               "Create the geom with gdc::ode::createConvex(space, planes, planeCount, points, "
-               "pointCount, polygons) (the same arguments as dCreateConvex) or "
-               "gdc::ode::createConvex(space, points, pointCount) instead.");
+    if (!hull) notCreatedByGdcontact();
     return *hull;
 }
 
@@ -133,9 +137,9 @@ int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int ma
         const ContactPoint& point = manifold.points[i];
         const double depth = point.depth;
         if (!(depth >= -touchingTolerance && isFinite(point.position))) continue;
-        int slot = ++kept;
-        for (; depth > ranked[slot - 1].depth; --slot) ranked[slot] = ranked[slot - 1];
-        ranked[slot] = Ranked{depth, i};
+        Ranked* slot = &ranked[++kept];  // a pointer walk: indices made g++ unroll into index arithmetic
+        for (; depth > slot[-1].depth; --slot) *slot = slot[-1];
+        *slot = Ranked{depth, i};
     }
     const int written = std::min(kept, maxContacts);
     // Every field but the position and depth is the same for all contacts of the pair.
