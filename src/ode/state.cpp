@@ -54,9 +54,11 @@ constexpr std::size_t kBoxCacheCapacity = 4096;
 //    fills an empty slot or a tombstone. A probe from the key's home slot therefore reaches it
 //    whatever writers do meanwhile, and since no slot of a published table ever becomes empty
 //    again, no probe stops early.
-//  - Tombstones and growth are handled by building a fresh table (from the map) and publishing it;
-//    a reader that still probes the old one finds its geom there too, as the old table is not
-//    changed after it was replaced and held every geom alive at that time.
+//  - Tombstones, growth and shrinking are handled by building a fresh table (from the map) and
+//    publishing it (release; readers load it with acquire). A reader that still probes the old
+//    table finds its geom there too: the old table held every geom alive when it was replaced,
+//    and a geom created later was created after the new table was published, so a reader that
+//    was handed that geom loads the new table (or a newer one).
 // A replaced table is freed once no reader can be probing it: each reading thread announces the
 // table it reads in a hazard slot (M. M. Michael, "Hazard pointers: safe memory reclamation for
 // lock-free objects", IEEE TPDS 15(6), 2004). The announcement is kept between lookups, so a
@@ -87,8 +89,9 @@ struct IndexTable {
     std::size_t capacity() const { return mask + 1; }
 };
 
-// The smallest table, and the most a table is filled (keys + tombstones) before it is rebuilt:
-// at most half full keeps a linear probe short (Knuth: ≈ 1.5 slots for a hit, 2.5 for a miss).
+// The smallest table. A table is at most half full (keys + tombstones; storeInIndex), which keeps
+// a linear probe short (Knuth: ≈ 1.5 slots for a hit, 2.5 for a miss) and guarantees that every
+// probe meets an empty slot.
 constexpr unsigned kMinLog2Capacity = 6;
 
 }  // namespace

@@ -60,15 +60,15 @@ std::shared_ptr<const Polytope> boxPolytope(double halfX, double halfY, double h
 
 void setInstalledSettings(const Settings& settings);
 
-// ---- collide()'s lookups: per-thread, no lock and no reference count on a hit ----
+// ---- collide()'s lookups: no lock and no reference count on a hit ----
 
 /// Box sizes a thread keeps at once (least recently used evicted).
 constexpr int kBorrowedBoxSizes = 8;
 
+struct ConvexIndexReader;  // a thread's hazard slot for the convex index (state.cpp)
+
 /// What one thread keeps so that collide() neither locks nor writes shared memory in the common
 /// case. Get it with threadCache(); the lookups below take it so that one call reaches it once.
-struct ConvexIndexReader;
-
 struct ThreadCache {
     ThreadCache() = default;
     ThreadCache(const ThreadCache&) = delete;
