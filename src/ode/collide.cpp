@@ -42,7 +42,8 @@ Pose readPose(dGeomID geom) {
     const dReal* p = dGeomGetPosition(geom);
     const dReal* r = dGeomGetRotation(geom);  // a dMatrix3: 3x4 row-major, the fourth column padding
     Pose pose{Mat3{}, Vec3{p[0], p[1], p[2]}};
-    pose.rotation << r[0], r[1], r[2], r[4], r[5], r[6], r[8], r[9], r[10];
+    for (int row = 0; row < 3; ++row)
+        for (int column = 0; column < 3; ++column) pose.rotation(row, column) = r[4 * row + column];
     return pose;
 }
 
@@ -142,25 +143,19 @@ int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int ma
         *slot = Ranked{depth, i};
     }
     const int written = std::min(kept, maxContacts);
-    // Every field but the position and depth is the same for all contacts of the pair.
-    dContactGeom common;
-    common.pos[3] = 0;
-    common.normal[0] = normal.x();
-    common.normal[1] = normal.y();
-    common.normal[2] = normal.z();
-    common.normal[3] = 0;
-    common.g1 = o1;
-    common.g2 = o2;
-    common.side1 = -1;
-    common.side2 = -1;
+    const dReal odeNormal[4] = {normal.x(), normal.y(), normal.z(), 0};
     char* outBytes = reinterpret_cast<char*>(contact);
     for (int k = 1; k <= written; ++k, outBytes += skip) {
         const Vec3& position = manifold.points[ranked[k].index].position;
-        common.pos[0] = position.x();
-        common.pos[1] = position.y();
-        common.pos[2] = position.z();
-        common.depth = std::max(ranked[k].depth, 0.0);
-        std::memcpy(outBytes, &common, sizeof common);
+        const dReal odePosition[4] = {position.x(), position.y(), position.z(), 0};
+        dContactGeom* out = reinterpret_cast<dContactGeom*>(outBytes);
+        std::memcpy(out->pos, odePosition, sizeof odePosition);
+        std::memcpy(out->normal, odeNormal, sizeof odeNormal);
+        out->depth = std::max(ranked[k].depth, 0.0);
+        out->g1 = o1;
+        out->g2 = o2;
+        out->side1 = -1;
+        out->side2 = -1;
     }
     return written;
 }
