@@ -59,7 +59,6 @@ Pose readPose(dGeomID geom) {
            " (leave that pair to ODE: install() overrides only the supported pairs)");
 }
 
-// The polytope (geom frame) of a box or createConvex geom; misuse for any other class.
 [[noreturn, gnu::cold, gnu::noinline]] void notCreatedByGdcontact() {
     misuse("a dConvex geom made with plain dCreateConvex reached gdc::ode::collide. ODE "
            "0.16.2 gives no access to a dConvex's data, so gdcontact cannot collide it. "
@@ -176,9 +175,8 @@ int collidePolytopeWithPlane(dGeomID o1, int class1, dGeomID o2, int class2, int
     const bool planeFirst = class1 == dPlaneClass;
     if (planeFirst && class2 == dPlaneClass) misuse("gdc::ode::collide: plane–plane is not a supported pair");
     dGeomID body = planeFirst ? o2 : o1;
-    const HalfSpace plane = planeFirst ? halfSpaceOf(o1, cache) : HalfSpace{};
     const Polytope& polytope = polytopeFor(body, planeFirst ? class2 : class1, cache);
-    const HalfSpace halfSpace = planeFirst ? plane : halfSpaceOf(o2, cache);
+    const HalfSpace halfSpace = halfSpaceOf(planeFirst ? o1 : o2, cache);
     const Pose pose = readPose(body);
     const Manifold manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) {
         return gdc::collide(polytope, pose, halfSpace, pairSettings);
