@@ -3,7 +3,8 @@
 // through gdc::collide directly. Not a test (nothing is asserted); see tests/ode/CMakeLists.txt.
 //   ode_adapter_overhead CASE adapter|core [ROUNDS]   one measured loop (callgrind toggles it)
 //   ode_adapter_overhead dump [POSES]                 every contact of many pairs, as hex floats
-// Adapter overhead per call = Ir(adapter) − Ir(core) for the same CASE, e.g.
+// Adapter overhead per call = Ir(adapter) − Ir(core) for the same CASE (tests/ode/adapter_overhead.sh
+// runs every case), e.g.
 //   valgrind --tool=callgrind --collect-atstart=no --callgrind-out-file=/dev/null \
 //       ode_adapter_overhead box_box adapter
 // prints "calls N" and callgrind prints the collected instruction total ("Collected : I").
