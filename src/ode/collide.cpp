@@ -14,16 +14,6 @@
 namespace gdc::ode {
 namespace {
 
-// One side of a pair. Built in place by readShape (no default-initialised pose to overwrite).
-struct Shape {
-    // Geom-local frame; nullptr for a plane. Borrowed from the adapter's state (see state.hpp)
-    // for the duration of one collide call, so that no reference count is touched per pair.
-    const Polytope* polytope;
-    Pose pose;            // a polytope's world pose
-    HalfSpace halfSpace;  // a plane, world frame
-    bool isPlane() const { return polytope == nullptr; }
-};
-
 const char* className(int geomClass) {
     switch (geomClass) {
         case dSphereClass: return "sphere";
@@ -46,14 +36,15 @@ std::shared_ptr<const Polytope> boxPolytopeOf(dGeomID box) {
     return detail::boxPolytope(0.5 * lengths[0], 0.5 * lengths[1], 0.5 * lengths[2]);
 }
 
-// poseOf without its checks, for geoms whose class is already known to be placeable.
+// poseOf without its checks, for geoms whose class is already known to be placeable: ODE's arrays
+// read straight into the pose the core takes (returned in place, no copy).
 Pose readPose(dGeomID geom) {
-    const dReal* position = dGeomGetPosition(geom);
-    // A dMatrix3 is 3x4 row-major (the fourth column is padding).
-    using OdeRotation = Eigen::Map<const Eigen::Matrix<dReal, 3, 3, Eigen::RowMajor>, Eigen::Unaligned,
-                                   Eigen::OuterStride<4>>;
-    return Pose{OdeRotation(dGeomGetRotation(geom)).cast<double>(),
-                Vec3(position[0], position[1], position[2])};
+    const dReal* p = dGeomGetPosition(geom);
+    const dReal* r = dGeomGetRotation(geom);  // a dMatrix3: 3x4 row-major, the fourth column padding
+    Pose pose{Mat3{}, Vec3{p[0], p[1], p[2]}};
+    for (int row = 0; row < 3; ++row)
+        for (int column = 0; column < 3; ++column) pose.rotation(row, column) = r[4 * row + column];
+    return pose;
 }
 
 // Misuse of the adapter is a programming error: ODE's error handler (which by default prints
@@ -62,86 +53,61 @@ Pose readPose(dGeomID geom) {
     dError(d_ERR_UASSERT, "%s", ("gdcontact: " + what).c_str());
 }
 
-Shape readShape(dGeomID geom, detail::ThreadCache& cache) {
-    const int geomClass = dGeomGetClass(geom);
-    switch (geomClass) {
-        case dBoxClass: {
-            dVector3 lengths;
-            dGeomBoxGetLengths(geom, lengths);
-            return Shape{&detail::borrowedBoxPolytope(cache, 0.5 * lengths[0], 0.5 * lengths[1], 0.5 * lengths[2]),
-                         readPose(geom), HalfSpace{}};
-        }
-        case dConvexClass: {
-            const Polytope* hull = detail::borrowedConvex(cache, geom);
-            if (!hull)
-                misuse("a dConvex geom made with plain dCreateConvex reached gdc::ode::collide. ODE "
-                       "0.16.2 gives no access to a dConvex's data, so gdcontact cannot collide it. "
-                       "Create the geom with gdc::ode::createConvex(space, planes, planeCount, points, "
-                       "pointCount, polygons) (the same arguments as dCreateConvex) or "
-                       "gdc::ode::createConvex(space, points, pointCount) instead.");
-            return Shape{hull, readPose(geom), HalfSpace{}};
-        }
-        case dPlaneClass: {
-            dVector4 parameters;  // a·x + b·y + c·z ≤ d is the solid; (a,b,c) points out of it
-            dGeomPlaneGetParams(geom, parameters);
-            return Shape{nullptr, Pose{},
-                         HalfSpace{detail::unitPlaneNormal(cache, parameters[0], parameters[1], parameters[2]),
-                                   static_cast<double>(parameters[3])}};
-        }
-        default:
-            misuse(std::string("gdc::ode::collide handles box, convex (gdc::ode::createConvex) and plane "
-                               "geoms; it got a ") + className(geomClass) +
-                   " (leave that pair to ODE: install() overrides only the supported pairs)");
-    }
+[[noreturn, gnu::cold, gnu::noinline]] void unsupportedClass(int geomClass) {
+    misuse(std::string("gdc::ode::collide handles box, convex (gdc::ode::createConvex) and plane "
+                       "geoms; it got a ") + className(geomClass) +
+           " (leave that pair to ODE: install() overrides only the supported pairs)");
 }
 
-int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip,
-                   const Settings& settings) {
-    const int maxContacts = std::min({flags & 0xffff, settings.maxContacts, kMaxManifoldPoints});
-    if (maxContacts <= 0 || o1 == o2) return 0;
-    if (!o1 || !o2) misuse("gdc::ode::collide got a null geom");
-    if (!contact) misuse("gdc::ode::collide got a null contact array");
-    if (skip < static_cast<int>(sizeof(dContactGeom)))
-        misuse("gdc::ode::collide: skip (" + std::to_string(skip) +
-               ") is smaller than sizeof(dContactGeom)");
+[[noreturn, gnu::cold, gnu::noinline]] void notCreatedByGdcontact() {
+    misuse("a dConvex geom made with plain dCreateConvex reached gdc::ode::collide. ODE "
+           "0.16.2 gives no access to a dConvex's data, so gdcontact cannot collide it. "
+           "Create the geom with gdc::ode::createConvex(space, planes, planeCount, points, "
+           "pointCount, polygons) (the same arguments as dCreateConvex) or "
+           "gdc::ode::createConvex(space, points, pointCount) instead.");
+}
 
-    detail::ThreadCache& cache = detail::threadCache();
-    const Shape shape1 = readShape(o1, cache);
-    const Shape shape2 = readShape(o2, cache);
-    if (shape1.isPlane() && shape2.isPlane())
-        misuse("gdc::ode::collide: plane–plane is not a supported pair");
+// The polytope (geom frame) of a box or createConvex geom; misuse for any other class.
+const Polytope& polytopeFor(dGeomID geom, int geomClass, detail::ThreadCache& cache) {
+    if (geomClass == dBoxClass) {
+        dVector3 lengths;
+        dGeomBoxGetLengths(geom, lengths);
+        return detail::borrowedBoxPolytope(cache, 0.5 * lengths[0], 0.5 * lengths[1], 0.5 * lengths[2]);
+    }
+    if (geomClass != dConvexClass) unsupportedClass(geomClass);
+    const Polytope* hull = detail::borrowedConvex(cache, geom);
+    if (!hull) notCreatedByGdcontact();
+    return *hull;
+}
 
-    // One fixed order per pair, so collide(a,b) and collide(b,a) make the same core call and
-    // their answers are exact mirrors (ODE calls fn(b,a) for dCollide(a,b) on same-class pairs).
-    // The order comes from the geoms' positions, not their addresses: a world rebuilt in the same
-    // state must replay exactly, and allocation reuses addresses in another order (the address
-    // only breaks exact ties).
-    auto before = [](const Shape& x, dGeomID geomX, const Shape& y, dGeomID geomY) {
-        const Vec3& p = x.pose.position;
-        const Vec3& q = y.pose.position;
-        if (p.x() != q.x()) return p.x() < q.x();
-        if (p.y() != q.y()) return p.y() < q.y();
-        if (p.z() != q.z()) return p.z() < q.z();
-        return std::less<const void*>{}(static_cast<const void*>(geomX), static_cast<const void*>(geomY));
-    };
-    const bool swapped = shape1.isPlane() || (!shape2.isPlane() && before(shape2, o2, shape1, o1));
-    const Shape& a = swapped ? shape2 : shape1;
-    const Shape& b = swapped ? shape1 : shape2;
+HalfSpace halfSpaceOf(dGeomID plane, detail::ThreadCache& cache) {
+    dVector4 parameters;  // a·x + b·y + c·z ≤ d is the solid; (a,b,c) points out of it
+    dGeomPlaneGetParams(plane, parameters);
+    return HalfSpace{detail::unitPlaneNormal(cache, parameters[0], parameters[1], parameters[2]),
+                     static_cast<double>(parameters[3])};
+}
 
-    const Manifold manifold = [&] {
-        auto collideWith = [&](const Settings& pairSettings) {
-            return b.isPlane() ? gdc::collide(*a.polytope, a.pose, b.halfSpace, pairSettings)
-                               : gdc::collide(*a.polytope, a.pose, *b.polytope, b.pose, pairSettings);
-        };
-        if (settings.maxContacts == maxContacts) return collideWith(settings);  // the common case: no copy
-        Settings pairSettings = settings;
-        pairSettings.maxContacts = maxContacts;
-        return collideWith(pairSettings);
-    }();
-    if (manifold.empty()) return 0;
+// One fixed order per pair, so collide(a,b) and collide(b,a) make the same core call and their
+// answers are exact mirrors (ODE calls fn(b,a) for dCollide(a,b) on same-class pairs). The order
+// comes from the geoms' positions, not their addresses: a world rebuilt in the same state must
+// replay exactly, and allocation reuses addresses in another order (the address only breaks
+// exact ties).
+bool comesFirst(const Vec3& p, dGeomID geomP, const Vec3& q, dGeomID geomQ) {
+    if (p.x() != q.x()) return p.x() < q.x();
+    if (p.y() != q.y()) return p.y() < q.y();
+    if (p.z() != q.z()) return p.z() < q.z();
+    return std::less<const void*>{}(static_cast<const void*>(geomP), static_cast<const void*>(geomQ));
+}
 
+// Vec3::allFinite without the reduction machinery: x − x is 0 exactly for a finite x, NaN else.
+bool isFinite(const Vec3& v) { return (v.x() - v.x()) + (v.y() - v.y()) + (v.z() - v.z()) == 0.0; }
+
+// The core's contacts as ODE's: deepest first, at most maxContacts, written in place at stride
+// `skip`. `flip`: the core's A is o2 (its normal then already points from o2 into o1).
+int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int maxContacts, dGeomID o1,
+                  dGeomID o2, dContactGeom* contact, int skip) {
     // The core's normal points from A towards B; ODE's from o2 into o1.
-    Vec3 normal = swapped ? manifold.normal : Vec3(-manifold.normal);
+    Vec3 normal = flip ? manifold.normal : Vec3(-manifold.normal);
     const double length = normal.norm();
     if (!std::isfinite(length) || std::abs(length - 1.0) > 1e-6) {
         dMessage(d_ERR_UNKNOWN, "gdcontact: the core returned an invalid normal; pair skipped");
@@ -152,46 +118,99 @@ int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int
     // ODE treats every contact as active and clamps a negative depth to zero, so a speculative
     // point (depth < 0, only with Settings::margin > 0) would hold the bodies apart by its gap.
     // Such points are not passed on; a rounding-level negative depth is reported as touching.
-    const double sizeOfPair = a.polytope->radius() + (b.isPlane() ? 0.0 : b.polytope->radius());
     const double touchingTolerance = 1e-9 * sizeOfPair;
     // Deepest first, as ODE's own colliders list them. dWorldQuickStep sweeps the contact rows in
     // the order given; the core's order walks the contact polygon the same way round every step,
     // and under QuickStep that fixed order roughly doubled a 10-stack's drift (samples/ode_stack).
     // Kept points are inserted by depth as they are read (stable: equal depths keep the core's
-    // order); at most 16, so an insertion sort on a compact copy of the depths is the cheapest.
-    std::array<int, kMaxManifoldPoints> order;  // indices into manifold.points, deepest first
-    std::array<double, kMaxManifoldPoints> orderDepth;
+    // order); at most 16, so an insertion sort of (depth, index) pairs is the cheapest. Slot 0
+    // holds NaN, which no comparison passes, so the inner loop needs no bound check (a kept depth
+    // is never NaN).
+    struct Ranked {
+        double depth;
+        int index;
+    };
+    std::array<Ranked, kMaxManifoldPoints + 1> ranked;  // deepest first from ranked[1]
+    ranked[0] = Ranked{NAN, -1};
     int kept = 0;
     for (int i = 0; i < manifold.pointCount; ++i) {
         const ContactPoint& point = manifold.points[i];
-        if (!(point.depth >= -touchingTolerance && point.position.allFinite())) continue;
-        int slot = kept++;
-        for (; slot > 0 && point.depth > orderDepth[slot - 1]; --slot) {
-            order[slot] = order[slot - 1];
-            orderDepth[slot] = orderDepth[slot - 1];
-        }
-        order[slot] = i;
-        orderDepth[slot] = point.depth;
+        const double depth = point.depth;
+        if (!(depth >= -touchingTolerance && isFinite(point.position))) continue;
+        Ranked* slot = &ranked[++kept];  // a pointer walk: indices made g++ unroll into index arithmetic
+        for (; depth > slot[-1].depth; --slot) *slot = slot[-1];
+        *slot = Ranked{depth, i};
     }
     const int written = std::min(kept, maxContacts);
-    const dReal odeNormal[4] = {static_cast<dReal>(normal.x()), static_cast<dReal>(normal.y()),
-                                static_cast<dReal>(normal.z()), 0};
+    const dReal odeNormal[4] = {normal.x(), normal.y(), normal.z(), 0};
     char* outBytes = reinterpret_cast<char*>(contact);
-    for (int k = 0; k < written; ++k, outBytes += skip) {
-        const ContactPoint& point = manifold.points[order[k]];
+    for (int k = 1; k <= written; ++k, outBytes += skip) {
+        const Vec3& position = manifold.points[ranked[k].index].position;
+        const dReal odePosition[4] = {position.x(), position.y(), position.z(), 0};
         dContactGeom* out = reinterpret_cast<dContactGeom*>(outBytes);
-        out->pos[0] = static_cast<dReal>(point.position.x());
-        out->pos[1] = static_cast<dReal>(point.position.y());
-        out->pos[2] = static_cast<dReal>(point.position.z());
-        out->pos[3] = 0;
+        std::memcpy(out->pos, odePosition, sizeof odePosition);
         std::memcpy(out->normal, odeNormal, sizeof odeNormal);
-        out->depth = static_cast<dReal>(std::max(orderDepth[k], 0.0));
+        out->depth = std::max(ranked[k].depth, 0.0);
         out->g1 = o1;
         out->g2 = o2;
         out->side1 = -1;
         out->side2 = -1;
     }
     return written;
+}
+
+// The settings for one core call: `settings`, or a copy with the caller's smaller limit.
+template <class Collide>
+Manifold collideLimited(const Settings& settings, int maxContacts, Collide collideWith) {
+    if (settings.maxContacts == maxContacts) return collideWith(settings);  // the common case: no copy
+    Settings pairSettings = settings;
+    pairSettings.maxContacts = maxContacts;
+    return collideWith(pairSettings);
+}
+
+int collidePolytopeWithPlane(dGeomID o1, int class1, dGeomID o2, int class2, int maxContacts,
+                             dContactGeom* contact, int skip, const Settings& settings,
+                             detail::ThreadCache& cache) {
+    // The plane is always the core's B; the core's A is o2 when o1 is the plane.
+    const bool planeFirst = class1 == dPlaneClass;
+    if (planeFirst && class2 == dPlaneClass) misuse("gdc::ode::collide: plane–plane is not a supported pair");
+    dGeomID body = planeFirst ? o2 : o1;
+    const Polytope& polytope = polytopeFor(body, planeFirst ? class2 : class1, cache);
+    const HalfSpace halfSpace = halfSpaceOf(planeFirst ? o1 : o2, cache);
+    const Pose pose = readPose(body);
+    const Manifold manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) {
+        return gdc::collide(polytope, pose, halfSpace, pairSettings);
+    });
+    if (manifold.empty()) return 0;
+    return writeContacts(manifold, planeFirst, polytope.radius(), maxContacts, o1, o2, contact, skip);
+}
+
+int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip,
+                   const Settings& settings, detail::ThreadCache& cache) {
+    const int maxContacts = std::min({flags & 0xffff, settings.maxContacts, kMaxManifoldPoints});
+    if (maxContacts <= 0 || o1 == o2) return 0;
+    if (!o1 || !o2) misuse("gdc::ode::collide got a null geom");
+    if (!contact) misuse("gdc::ode::collide got a null contact array");
+    if (skip < static_cast<int>(sizeof(dContactGeom)))
+        misuse("gdc::ode::collide: skip (" + std::to_string(skip) +
+               ") is smaller than sizeof(dContactGeom)");
+
+    const int class1 = dGeomGetClass(o1);
+    const int class2 = dGeomGetClass(o2);
+    if (class1 == dPlaneClass || class2 == dPlaneClass)
+        return collidePolytopeWithPlane(o1, class1, o2, class2, maxContacts, contact, skip, settings, cache);
+    const Polytope& polytope1 = polytopeFor(o1, class1, cache);
+    const Polytope& polytope2 = polytopeFor(o2, class2, cache);
+    const Pose pose1 = readPose(o1);
+    const Pose pose2 = readPose(o2);
+    const bool swapped = comesFirst(pose2.position, o2, pose1.position, o1);
+    const Manifold manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) {
+        return swapped ? gdc::collide(polytope2, pose2, polytope1, pose1, pairSettings)
+                       : gdc::collide(polytope1, pose1, polytope2, pose2, pairSettings);
+    });
+    if (manifold.empty()) return 0;
+    return writeContacts(manifold, swapped, polytope1.radius() + polytope2.radius(), maxContacts, o1, o2,
+                         contact, skip);
 }
 
 void validate(const Settings& settings) {
@@ -212,8 +231,32 @@ void validate(const Settings& settings) {
             "Settings::coplanarTolerance must be finite and non-negative");
 }
 
+// The installed settings (`settings` null) or the caller's. ODE is C: no exception may cross
+// back into it.
+int collideGuarded(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip, const Settings* settings) {
+    detail::ThreadCache& cache = detail::threadCache();
+    if (!settings) {
+        static const Settings defaults;
+        settings = &defaults;
+        try {
+            settings = &detail::installedSettings(cache);
+        } catch (...) {  // a lock failure; the defaults are always valid
+        }
+    }
+    try {
+        return collideChecked(o1, o2, flags, contact, skip, *settings, cache);
+    } catch (const InvalidInput& error) {  // its message already starts with "gdcontact: "
+        dMessage(d_ERR_UNKNOWN, "%s (pair skipped)", error.what());
+    } catch (const std::exception& error) {
+        dMessage(d_ERR_UNKNOWN, "gdcontact: %s (pair skipped)", error.what());
+    } catch (...) {
+        dMessage(d_ERR_UNKNOWN, "gdcontact: unknown failure (pair skipped)");
+    }
+    return 0;
+}
+
 int collideInstalled(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip) {
-    return collide(o1, o2, flags, contact, skip);
+    return collideGuarded(o1, o2, flags, contact, skip, nullptr);
 }
 
 }  // namespace
@@ -230,27 +273,11 @@ void install(const Settings& settings) {
 
 int collide(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip,
             const Settings& settings) {
-    // ODE is C: no exception may cross back into it.
-    try {
-        return collideChecked(o1, o2, flags, contact, skip, settings);
-    } catch (const InvalidInput& error) {  // its message already starts with "gdcontact: "
-        dMessage(d_ERR_UNKNOWN, "%s (pair skipped)", error.what());
-    } catch (const std::exception& error) {
-        dMessage(d_ERR_UNKNOWN, "gdcontact: %s (pair skipped)", error.what());
-    } catch (...) {
-        dMessage(d_ERR_UNKNOWN, "gdcontact: unknown failure (pair skipped)");
-    }
-    return 0;
+    return collideGuarded(o1, o2, flags, contact, skip, &settings);
 }
 
 int collide(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip) {
-    static const Settings defaults;
-    const Settings* settings = &defaults;
-    try {
-        settings = &detail::installedSettings(detail::threadCache());
-    } catch (...) {  // a lock failure; the defaults are always valid
-    }
-    return collide(o1, o2, flags, contact, skip, *settings);
+    return collideGuarded(o1, o2, flags, contact, skip, nullptr);
 }
 
 std::shared_ptr<const Polytope> polytopeOf(dGeomID geom) {

@@ -3,12 +3,12 @@
 // ODE leaves no other choice: a dColliderFn carries no user pointer (so the installed settings
 // must be found globally), ODE 0.16.2 has no getter for a dConvex's data (so the hull of a
 // createConvex geom must be found by the geom's address) and no geom-destroy callback (so the
-// registry learns of a destroyed geom through ODE's free handler). Everything shared is guarded
-// by locks; the core stays pure.
+// registry learns of a destroyed geom through ODE's free handler). The core stays pure.
 //
-// collide() runs for every pair on every step, so its lookups (hull, box polytope, settings) are
-// answered from per-thread caches that take no lock and touch no reference count on a hit; a
-// generation counter per shared table tells a thread when its copy may be stale.
+// collide() runs for every pair on every step, so its lookups take no lock and touch no reference
+// count: a hull is found in a lock-free index of geom addresses (state.cpp) at any scene size; box
+// polytopes and the settings come from per-thread caches, with a generation counter per shared
+// value telling a thread when its copy may be stale. Everything else is guarded by locks.
 #pragma once
 
 #include <gdcontact/polytope.hpp>
@@ -44,20 +44,37 @@ std::shared_ptr<const Polytope> registeredConvex(dGeomID geom);
 /// Number of live registered convex geoms.
 std::size_t registeredConvexCount();
 
+/// For tests: the slots of the convex index collide() reads, the replaced index tables not yet
+/// freed because some thread may still be reading them (at most one per thread), and how many
+/// tables have been published (each growth, shrink or clean-up of tombstones publishes one).
+struct ConvexIndexStats {
+    std::size_t capacity;
+    std::size_t retiredTables;
+    std::size_t tablesPublished;
+};
+ConvexIndexStats convexIndexStats();
+
 /// A box polytope of the given half extents, shared between all boxes of that size (bounded
 /// cache: building a Polytope allocates, and box–box must be cheap).
 std::shared_ptr<const Polytope> boxPolytope(double halfX, double halfY, double halfZ);
 
 void setInstalledSettings(const Settings& settings);
 
-// ---- collide()'s lookups: per-thread, no lock and no reference count on a hit ----
+// ---- collide()'s lookups: no lock and no reference count on a hit ----
 
 /// Box sizes a thread keeps at once (least recently used evicted).
 constexpr int kBorrowedBoxSizes = 8;
 
+struct ConvexIndexReader;  // a thread's hazard slot for the convex index (state.cpp)
+
 /// What one thread keeps so that collide() neither locks nor writes shared memory in the common
 /// case. Get it with threadCache(); the lookups below take it so that one call reaches it once.
 struct ThreadCache {
+    ThreadCache() = default;
+    ThreadCache(const ThreadCache&) = delete;
+    ThreadCache& operator=(const ThreadCache&) = delete;
+    ~ThreadCache();  // gives the thread's convex index slot back
+
     struct BoxSlot {
         double halfExtents[3] = {NAN, NAN, NAN};    // NaN: never equal, so an empty slot never hits
         std::shared_ptr<const Polytope> polytope;  // keeps the borrowed polytope alive
@@ -67,14 +84,10 @@ struct ThreadCache {
     std::uint64_t boxClock = 0;
     int lastBox = 0;  // checked first: a scene's boxes mostly share a few sizes
 
-    // Direct-mapped by address; a collision only costs a locked lookup.
-    struct ConvexSlot {
-        const void* geom = nullptr;
-        const Polytope* hull = nullptr;
-        std::uint64_t generation = 0;  // the registry's generation when cached (0: empty)
-    };
-    static constexpr std::size_t kConvexSlots = 128;
-    ConvexSlot convexes[kConvexSlots];
+    // This thread's claim on the convex index (state.cpp): the hazard slot announcing the index
+    // table it may be reading, and that table. nullptr until the thread's first hull lookup.
+    ConvexIndexReader* convexReader = nullptr;
+    const void* protectedConvexTable = nullptr;
 
     struct PlaneSlot {
         double raw[3] = {NAN, NAN, NAN};  // NaN: never equal, so an empty slot never hits
@@ -96,6 +109,7 @@ inline ThreadCache& threadCache() {
 /// The hull of a createConvex geom for collide(): borrowed, not shared. It stays valid while the
 /// geom lives, since a hull is released only when ODE frees its geom, and a geom may not be
 /// destroyed while it is being collided. nullptr for a geom gdcontact did not create.
+/// O(1) expected at any number of hulls; takes no lock and never waits for a writer.
 const Polytope* borrowedConvex(ThreadCache& cache, dGeomID geom);
 
 /// As boxPolytope, for collide(): borrowed from the thread's cache. The reference stays valid

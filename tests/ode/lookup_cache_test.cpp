@@ -6,6 +6,7 @@
 
 #include "child_process.hpp"
 #include "ode_support.hpp"
+#include "state.hpp"  // src/ode: the convex index's statistics
 
 #include <catch2/catch.hpp>
 
@@ -13,6 +14,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <atomic>
 #include <condition_variable>
@@ -292,5 +294,106 @@ TEST_CASE("collide from several threads while install() runs and convex geoms co
         dGeomDestroy(pair[0]);
         if (pair[1] != ground) dGeomDestroy(pair[1]);
     }
+    dGeomDestroy(ground);
+}
+
+// The convex index (src/ode/state.cpp) at scene sizes: every hull found, through growth, tombstones
+// and rebuilds, while other threads read it.
+namespace {
+
+// Geom i of a batch is a cube of half size halfOf(i) standing on the plane z = 0 with its centre
+// at height kCentre: its deepest contact tells which hull collide() used.
+constexpr double kCentre = 0.2;
+double halfOf(int i) { return 0.25 + 1e-5 * (i % 4999); }
+
+dGeomID standingCube(int i) {
+    const auto corners = boxCorners(Vec3::Constant(halfOf(i)));
+    dGeomID geom = gdc::ode::createConvex(0, corners.data(), 8);
+    dGeomSetPosition(geom, 0.01 * (i % 97), 0.0, kCentre);
+    dGeomGetPosition(geom);  // ODE computes a moved geom's pose lazily, which is not thread-safe
+    return geom;
+}
+
+bool usesItsOwnHull(dGeomID geom, int i, dGeomID ground) {
+    std::array<dContactGeom, 8> out;
+    const int count = gdc::ode::collide(geom, ground, 8, out.data(), sizeof(dContactGeom));
+    return count == 4 && std::abs(out[0].depth - (halfOf(i) - kCentre)) < 1e-9;
+}
+
+}  // namespace
+
+TEST_CASE("thousands of createConvex geoms each collide with their own hull, through removals and re-creation",
+          "[ode][cache][lifetime]") {
+    OdeSession session;
+    dGeomID ground = dCreatePlane(0, 0, 0, 1, 0);
+    constexpr int kGeoms = 5000;
+    const std::size_t before = gdc::ode::liveConvexCount();
+    std::vector<dGeomID> geoms;
+    for (int i = 0; i < kGeoms; ++i) geoms.push_back(standingCube(i));
+    const std::size_t grownCapacity = gdc::ode::detail::convexIndexStats().capacity;
+    CHECK(grownCapacity >= 2 * kGeoms);  // at most half full
+    int wrong = 0;
+    for (int i = 0; i < kGeoms; ++i) wrong += !usesItsOwnHull(geoms[i], i, ground);
+    CHECK(wrong == 0);
+    // Every third geom goes and comes back with another hull (tombstones, reused slots and, as
+    // the allocator likes, reused addresses), then all are checked again.
+    for (int i = 0; i < kGeoms; i += 3) dGeomDestroy(geoms[i]);
+    for (int i = 0; i < kGeoms; i += 3) geoms[i] = standingCube(i + 1);
+    wrong = 0;
+    for (int i = 0; i < kGeoms; ++i) wrong += !usesItsOwnHull(geoms[i], i % 3 == 0 ? i + 1 : i, ground);
+    CHECK(wrong == 0);
+    for (dGeomID geom : geoms) dGeomDestroy(geom);
+    // Not "== before": an entry an earlier test left stale (its geom freed while another free
+    // handler was in front) is replaced, not added, when a new geom lands at its address.
+    CHECK(gdc::ode::liveConvexCount() <= before);
+    CHECK(gdc::ode::detail::convexIndexStats().capacity < grownCapacity / 8);  // shrunk with the scene
+    dGeomDestroy(ground);
+}
+
+TEST_CASE("collide from several threads finds every hull while another thread grows, empties and rebuilds the index",
+          "[ode][threads][cache]") {
+    OdeSession session;
+    dGeomID ground = dCreatePlane(0, 0, 0, 1, 0);
+    // Few geoms stay, so that every round grows the index and shrinks it again (a table shrinks
+    // when it is less than 1/16 full): at least two new tables per round.
+    constexpr int kThreads = 2, kReadGeoms = 40, kChurnRounds = 4, kChurnGeoms = 600;
+    std::vector<dGeomID> geoms;
+    for (int i = 0; i < kReadGeoms; ++i) geoms.push_back(standingCube(i));
+    const std::size_t startPublished = gdc::ode::detail::convexIndexStats().tablesPublished;
+
+    std::atomic<bool> done{false};
+    std::atomic<int> wrong{0}, reads{0};
+    std::thread churn([&] {
+        // Batches of new geoms grow the index (each growth publishes a new table); destroying a
+        // batch leaves tombstones, then shrinks it.
+        for (int round = 0; round < kChurnRounds; ++round) {
+            std::vector<dGeomID> batch;
+            for (int i = 0; i < kChurnGeoms; ++i) batch.push_back(standingCube(kReadGeoms + i));
+            for (dGeomID geom : batch) dGeomDestroy(geom);
+        }
+        done = true;
+    });
+    std::vector<std::thread> readers;
+    for (int t = 0; t < kThreads; ++t)
+        readers.emplace_back([&, t] {
+            // Each reader reads all geoms at least once, then for as long as the churn lasts.
+            for (int pass = 0; pass == 0 || !done; ++pass)
+                for (int i = t; i < kReadGeoms; i += kThreads) {
+                    if (!usesItsOwnHull(geoms[i], i, ground)) ++wrong;
+                    ++reads;
+                }
+        });
+    churn.join();
+    for (std::thread& reader : readers) reader.join();
+    CHECK(wrong == 0);
+    CHECK(reads >= kReadGeoms);
+    // The readers did see the index replaced (growth, shrink), many times.
+    CHECK(gdc::ode::detail::convexIndexStats().tablesPublished >= startPublished + 2 * kChurnRounds);
+    // The readers have ended, so no thread reads a replaced table any more except, at most, the
+    // one this thread read last; the next change of the registry frees the others.
+    CHECK(usesItsOwnHull(geoms[0], 0, ground));
+    dGeomDestroy(standingCube(0));
+    CHECK(gdc::ode::detail::convexIndexStats().retiredTables == 0);
+    for (dGeomID geom : geoms) dGeomDestroy(geom);
     dGeomDestroy(ground);
 }
