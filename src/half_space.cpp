@@ -27,9 +27,7 @@ constexpr int kBoxEdge[8][3] = {{0, 1, 2}, {0, 3, 4}, {5, 1, 6}, {5, 3, 7},
                                 {8, 9, 2}, {8, 10, 4}, {11, 9, 6}, {11, 10, 7}};
 
 void requireFinite(const Pose& pose) {
-    // x·0 is 0 for every finite x and NaN otherwise: one test for the twelve numbers.
-    const double nonFinite = (pose.rotation.array() * 0.0).sum() + (pose.position.array() * 0.0).sum();
-    if (!(nonFinite == 0)) throw InvalidInput("the pose of A is not finite");
+    if (!pose.isFinite()) throw InvalidInput("the pose of A is not finite");
 }
 
 // The half-space in A's frame: the solid is {x : m·x ≤ offset}; the contact normal is −m.

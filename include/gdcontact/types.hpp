@@ -25,7 +25,11 @@ struct Pose {
     Pose relative(const Pose& other) const {
         return {rotation.transpose() * other.rotation, applyInverse(other.position)};
     }
-    bool isFinite() const { return rotation.allFinite() && position.allFinite(); }
+    /// x·0 is 0 for every finite x and NaN otherwise: one branch-free test for the twelve numbers
+    /// (allFinite() tests each, which showed in the profile of a separated pair).
+    bool isFinite() const {
+        return (rotation.array() * 0.0).sum() + (position.array() * 0.0).sum() == 0.0;
+    }
 };
 
 /// Thrown where bad input enters gdcontact (a degenerate point set, a non-convex face list,
