@@ -28,10 +28,6 @@ namespace {
 // is within the tolerance of two faces' normals on opposite sides of the box.
 constexpr double kMaxAngularTolerance = 0.7;
 
-// collide.cpp's kClearlySmallerOverlap: the overhang check runs only where a face could need less
-// than this fraction of the normal's overlap (the box pair's lower bound settles it otherwise).
-constexpr double kClearlySmallerOverlap = 0.5;
-
 // Polytope::box numbers vertex v with the signs of its bits (x: 1, y: 2, z: 4), the faces
 // −x, +x, −y, +y, −z, +z, and Polytope::buildTopology the edges in the order of their (tail, head)
 // vertex pairs, tail < head: (0,1) (0,2) (0,4) (1,3) (1,5) (2,3) (2,6) (3,7) (4,5) (4,6) (5,7) (6,7).
@@ -141,15 +137,8 @@ void refineNormal(Vec3& normal, double& normalOverlap, const BoxFeature& a, cons
         normal = best, normalOverlap = bestOverlap;
         return;
     }
-    if (a.type == FeatureType::Edge && b.type == FeatureType::Edge) {
-        Vec3 perpendicular = (a.points[1] - a.points[0]).cross(b.points[1] - b.points[0]);
-        double scale = (a.points[1] - a.points[0]).norm() * (b.points[1] - b.points[0]).norm();
-        if (perpendicular.norm() > 1e-6 * scale) {
-            perpendicular.normalize();
-            normal = perpendicular.dot(normal) < 0 ? -perpendicular : perpendicular;
-            normalOverlap = pair.overlapAlong(normal);
-        }
-    }
+    if (a.type == FeatureType::Edge && b.type == FeatureType::Edge)
+        edgeEdgeNormal(a.points[0], a.points[1], b.points[0], b.points[1], pair, normal, normalOverlap);
 }
 
 // feature_intersection.cpp's intersectFeatures for two box features (no caps), step for step on
@@ -353,25 +342,6 @@ bool exitsBy(const Vec3& halfA, const Vec3& halfB, const Pose& bInA, const Vec3&
     return false;
 }
 
-// collide.cpp's emit: the chosen points to the manifold, mapped from A's frame to the world.
-void emit(const LiftedPoints& points, const Vec3& normal, const Pose& commonToWorld, const Settings& settings,
-          Manifold& manifold) {
-    int chosen[kMaxManifoldPoints];
-    const int maxCount = std::max(1, std::min(settings.maxContacts, kMaxManifoldPoints));
-    const int total = static_cast<int>(points.size());
-    const int count = total <= maxCount ? total : reduceContacts(points, maxCount, chosen);
-    manifold.normal = commonToWorld.rotation * normal;
-    manifold.pointCount = count;
-    double nonFinite = 0;
-    for (int i = 0; i < count; ++i) {
-        const LiftedPoint& point = points[total <= maxCount ? i : chosen[i]];
-        manifold.points[i] = {commonToWorld.apply(point.position), point.depth};
-        nonFinite += (manifold.points[i].position * 0.0).sum() + point.depth * 0.0;
-    }
-    if (!(nonFinite == 0))
-        throw InvalidInput("the contact overflows double precision (coordinates or offsets near 1e308)");
-}
-
 }  // namespace
 
 // growth_distance.cpp's boxGrowthDistance (the closed-form growth distance of two boxes), on the
@@ -455,12 +425,9 @@ Manifold collideBoxBox(const Polytope& a, const Pose& poseA, const Polytope& b, 
     const MinkowskiDifference pair(a, b, bInA, settings.bruteForceSupportLimit);
     const double size = a.radius() + b.radius();
     const double tolerance = 1e-9 * size;
-    // The general pipeline's two early outs, as it computes them.
     const Vec3 centreOffset = pair.centreB - pair.centreA;
     const double centreDistance = centreOffset.norm();
-    if (centreDistance > size + settings.margin) return manifold;
-    if (centreDistance > 0 && pair.overlapAlong(centreOffset / centreDistance) < -settings.margin - tolerance)
-        return manifold;
+    if (separatedByEarlyOut(pair, centreOffset, centreDistance, size, settings.margin, tolerance)) return manifold;
 
     // Stage 1: the closed-form growth distance of two boxes.
     const BoxGrowth growth =
@@ -506,7 +473,7 @@ Manifold collideBoxBox(const Polytope& a, const Pose& poseA, const Polytope& b, 
         !exitsBy(a.boxHalfExtents(), b.boxHalfExtents(), bInA, normal, deepest + 2 * tolerance,
                  2 * settings.rayCastTolerance * size))
         return general();
-    emit(kept, normal, poseA, settings, manifold);
+    emitManifold(kept, normal, poseA, settings, manifold);
     return manifold;
 }
 

@@ -50,10 +50,6 @@ double overlapAlong(const MinkowskiDifference& pair, const Vec3& direction, cons
     return direction == normal ? normalOverlap : pair.overlapAlong(direction);
 }
 
-// How much smaller a neighbouring face's overlap must be than the growth-distance normal's before
-// it replaces that normal: "clearly" smaller, so that the paper's normal is kept wherever the two
-// roughly agree and the choice cannot flicker between near-equal candidates.
-constexpr double kClearlySmallerOverlap = 0.5;
 
 // Stage 1, second half: the growth-distance normal checked against the face normals around it.
 // The growth distance scales both bodies about their contraction points, so for an offset,
@@ -212,15 +208,8 @@ void refineNormal(Vec3& normal, double& normalOverlap, const FeatureGeometry& a,
         normal = best, normalOverlap = bestOverlap;
         return;
     }
-    if (a.type == FeatureType::Edge && b.type == FeatureType::Edge) {
-        Vec3 perpendicular = (a.points[1] - a.points[0]).cross(b.points[1] - b.points[0]);
-        double scale = (a.points[1] - a.points[0]).norm() * (b.points[1] - b.points[0]).norm();
-        if (perpendicular.norm() > 1e-6 * scale) {
-            perpendicular.normalize();
-            normal = perpendicular.dot(normal) < 0 ? -perpendicular : perpendicular;
-            normalOverlap = pair.overlapAlong(normal);
-        }
-    }
+    if (a.type == FeatureType::Edge && b.type == FeatureType::Edge)
+        edgeEdgeNormal(a.points[0], a.points[1], b.points[0], b.points[1], pair, normal, normalOverlap);
 }
 
 // Whether the deepest lifted point provably carries the whole penetration along n, so the ray cast
@@ -288,9 +277,31 @@ bool penetrationCertified(const LiftedPoint& deepest, const FeatureGeometry& fea
     return false;
 }
 
-// Writes the chosen points to the manifold, mapping from the common frame to the world.
-void emit(const LiftedPoints& points, const Vec3& normal, const Pose& commonToWorld, const Settings& settings,
-          Manifold& manifold) {
+}  // namespace
+
+namespace detail {
+
+bool separatedByEarlyOut(const MinkowskiDifference& pair, const Vec3& centreOffset, double centreDistance, double size,
+                         double margin, double tolerance) {
+    // Bounding spheres about the centroids: the cheap early out for separated pairs.
+    if (centreDistance > size + margin) return true;
+    // The line of centres is the likeliest separating axis of a pair whose spheres overlap: two
+    // support searches settle most separated pairs of a broad phase before the ray cast.
+    return centreDistance > 0 && pair.overlapAlong(centreOffset / centreDistance) < -margin - tolerance;
+}
+
+void edgeEdgeNormal(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, const MinkowskiDifference& pair,
+                    Vec3& normal, double& normalOverlap) {
+    Vec3 perpendicular = (a1 - a0).cross(b1 - b0);
+    const double scale = (a1 - a0).norm() * (b1 - b0).norm();
+    if (!(perpendicular.norm() > 1e-6 * scale)) return;  // parallel edges: no single perpendicular
+    perpendicular.normalize();
+    normal = perpendicular.dot(normal) < 0 ? -perpendicular : perpendicular;
+    normalOverlap = pair.overlapAlong(normal);
+}
+
+void emitManifold(const LiftedPoints& points, const Vec3& normal, const Pose& commonToWorld, const Settings& settings,
+                  Manifold& manifold) {
     int chosen[kMaxManifoldPoints];
     const int maxCount = std::max(1, std::min(settings.maxContacts, kMaxManifoldPoints));
     const int total = static_cast<int>(points.size());
@@ -310,10 +321,6 @@ void emit(const LiftedPoints& points, const Vec3& normal, const Pose& commonToWo
         throw InvalidInput("the contact overflows double precision (coordinates or offsets near 1e308)");
 }
 
-}  // namespace
-
-namespace detail {
-
 Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
                         const Settings& settings, bool alwaysConfirmDepth) {
     requireFinite(poseA, "A");
@@ -323,14 +330,8 @@ Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b,
     const MinkowskiDifference pair(a, b, bInA, settings.bruteForceSupportLimit);
     const double size = a.radius() + b.radius();
     const double tolerance = 1e-9 * size;
-    // Bounding spheres about the centroids: the cheap early out for separated pairs.
     const Vec3 centreOffset = pair.centreB - pair.centreA;
-    const double centreDistance = centreOffset.norm();
-    if (centreDistance > size + settings.margin) return manifold;
-    // The line of centres is the likeliest separating axis of a pair whose spheres overlap: two
-    // support searches settle most separated pairs of a broad phase before the ray cast.
-    if (centreDistance > 0 && pair.overlapAlong(centreOffset / centreDistance) < -settings.margin - tolerance)
-        return manifold;
+    if (separatedByEarlyOut(pair, centreOffset, centreOffset.norm(), size, settings.margin, tolerance)) return manifold;
 
     // Stage 1: contact normal from the growth distance (or, to measure the trade, the SAT's).
     const bool separatingAxis = settings.normalMethod == NormalMethod::SeparatingAxis;
@@ -417,7 +418,7 @@ Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b,
         if (gap < -settings.margin - tolerance) return Manifold{};
         kept.push_back({middle, gap, Vec2::Zero()});
     }
-    emit(kept, normal, poseA, settings, manifold);
+    emitManifold(kept, normal, poseA, settings, manifold);
     return manifold;
 }
 
@@ -517,7 +518,7 @@ Manifold collideGeneral(const Polytope& a, const Pose& poseA, const HalfSpace& b
         planeBasis(normal, u, v);
         for (LiftedPoint& point : kept) point.planar = Vec2(point.position.dot(u), point.position.dot(v));
     }
-    emit(kept, normal, poseA, settings, manifold);
+    emitManifold(kept, normal, poseA, settings, manifold);
     return manifold;
 }
 

@@ -4,6 +4,9 @@
 
 #include <gdcontact/collide.hpp>
 
+#include "feature_intersection.hpp"
+#include "minkowski.hpp"
+
 namespace gdc::detail {
 
 /// The paper's three stages for any two polytopes (collide.cpp). `alwaysConfirmDepth` runs the
@@ -14,5 +17,27 @@ Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b,
                         const Settings& settings, bool alwaysConfirmDepth = false);
 /// Gauss-map feature of A lifted onto the half-space, for any polytope (collide.cpp).
 Manifold collideGeneral(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings);
+
+/// How much smaller a face's overlap must be than the growth-distance normal's before the overhang
+/// check (collide.cpp, preferNearbyFaceNormal) replaces that normal by it: "clearly" smaller, so
+/// that the paper's normal is kept wherever the two roughly agree and the choice cannot flicker
+/// between near-equal candidates. The box–box path uses it to know when that check cannot run.
+constexpr double kClearlySmallerOverlap = 0.5;
+
+/// The general pipeline's early outs for a separated pair: bounding spheres about the centroids,
+/// then the line of centres as a separating axis (more than `margin` apart, beyond `tolerance`).
+/// `centreOffset` is pair.centreB − pair.centreA and `centreDistance` its length.
+bool separatedByEarlyOut(const MinkowskiDifference& pair, const Vec3& centreOffset, double centreDistance, double size,
+                         double margin, double tolerance);
+
+/// An edge–edge contact's normal: the edges' common perpendicular, turned to agree with `normal`,
+/// replaces it (and `normalOverlap` with the pair's overlap along it), unless the edges are parallel.
+void edgeEdgeNormal(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, const MinkowskiDifference& pair,
+                    Vec3& normal, double& normalOverlap);
+
+/// Writes the lifted points (A's frame) to the manifold in world coordinates, reduced to
+/// settings.maxContacts; throws InvalidInput when finite input overflowed into a non-finite contact.
+void emitManifold(const LiftedPoints& points, const Vec3& normal, const Pose& commonToWorld, const Settings& settings,
+                  Manifold& manifold);
 
 }  // namespace gdc::detail
