@@ -60,6 +60,16 @@ std::shared_ptr<const Polytope> boxPolytope(double halfX, double halfY, double h
 
 void setInstalledSettings(const Settings& settings);
 
+/// Whether ODE is initialised (between dInitODE2() and its matching dCloseODE()). ODE 0.16.2 has
+/// no public query and asserts inside (without naming the call order) when install() runs
+/// before dInitODE2(); Debian's libode exports the hook its initialisation sets (dlsym), so this
+/// reads it. True when the hook is not exported (another build of ODE): then it cannot tell.
+bool odeIsInitialized();
+
+/// Whether the geom's AABB (which ODE computes from the points it holds) is that of `hull` at
+/// `pose` (within rounding). False after dGeomSetConvex gave the geom other points.
+bool matchesAabb(const Polytope& hull, const Pose& pose, dGeomID geom, int bruteForceLimit);
+
 // ---- collide()'s lookups: no lock and no reference count on a hit ----
 
 /// Box sizes a thread keeps at once (least recently used evicted).
