@@ -166,6 +166,8 @@ const Polytope* knownHull(dGeomID geom, const Pose& pose, const Settings& settin
         return nullptr;
     }
     if (!detail::matchesAabb(*hull, pose, geom, settings.bruteForceSupportLimit)) {
+        // A non-finite pose makes every AABB differ: the core reports it ("not finite").
+        if (!pose.isFinite()) return hull;
         reportSetConvex();
         return nullptr;
     }

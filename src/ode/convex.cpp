@@ -208,11 +208,21 @@ dGeomID create(dSpaceID space, const dReal* planes, unsigned planeCount, const d
         // The caller's faces, if they pass the polytope's own (tighter, 1e-7) checks; data rounded
         // to fewer digits gets the hull of its points instead — the same solid within the data's
         // precision. ODE gets the caller's data (copied): its colliders behave as with dCreateConvex.
-        try {
-            record->polytope = std::make_shared<const Polytope>(Polytope::fromFaces(layout.vertices, layout.faces));
-        } catch (const InvalidInput&) {
-            record->polytope = hullOf(layout.vertices);
+        // The faces are used only when every point is a corner of one: the geom's AABB, which ODE
+        // computes from all the points, must be the polytope's (the adapter checks it to see
+        // dGeomSetConvex), and a point no polygon names may lie outside by the data's precision.
+        std::vector<bool> used(layout.vertices.size(), false);
+        for (const std::vector<int>& face : layout.faces)
+            for (int index : face) used[static_cast<std::size_t>(index)] = true;
+        const bool allUsed = std::find(used.begin(), used.end(), false) == used.end();
+        if (allUsed) {
+            try {
+                record->polytope =
+                    std::make_shared<const Polytope>(Polytope::fromFaces(layout.vertices, layout.faces));
+            } catch (const InvalidInput&) {  // rounded beyond fromFaces' 1e-7: the hull below
+            }
         }
+        if (!record->polytope) record->polytope = hullOf(layout.vertices);
         record->planes.assign(planes, planes + 4 * static_cast<std::size_t>(planeCount));
         record->points.assign(points, points + 3 * static_cast<std::size_t>(pointCount));
         record->polygons.assign(polygons, polygons + layout.polygonLength);

@@ -18,12 +18,9 @@ struct Audit {
     long invalid = 0;
     long steps = 0;
     std::string firstInvalid;
-    double maxDepth[16][16] = {};  // by the two geoms' classes (ODE's dXxxClass numbers)
 
     void check(const dContactGeom& c) {
         ++contacts;
-        const int c1 = dGeomGetClass(c.g1), c2 = dGeomGetClass(c.g2);
-        if (c1 >= 0 && c1 < 16 && c2 >= 0 && c2 < 16 && c.depth > maxDepth[c1][c2]) maxDepth[c1][c2] = c.depth;
         const double length = std::sqrt(c.normal[0] * c.normal[0] + c.normal[1] * c.normal[1] + c.normal[2] * c.normal[2]);
         const bool ok = std::isfinite(length) && std::abs(length - 1.0) < 1e-6 && std::isfinite(c.pos[0]) &&
                         std::isfinite(c.pos[1]) && std::isfinite(c.pos[2]) && std::isfinite(c.depth) && c.depth >= 0;

@@ -42,7 +42,7 @@ dReal heightAt(void*, int x, int z) { return 0.15 * std::sin(0.7 * x) * std::cos
 int runTerrain() {
     const dropin::ConvexData cube = dropin::demoCube(), icosahedron = dropin::roundedIcosahedron(0.2, true);
     dInitODE2(0);
-    if (!std::getenv("DROPIN_NO_INSTALL")) gdc::ode::install();
+    gdc::ode::install();
     world = dWorldCreate();
     dSpaceID space = dHashSpaceCreate(0);
     contactgroup = dJointGroupCreate(0);
@@ -109,15 +109,10 @@ int runTerrain() {
         dJointGroupEmpty(contactgroup);
         ++audit.steps;
     }
-    if (std::getenv("DROPIN_VERBOSE"))
-        for (int a = 0; a < 16; ++a)
-            for (int b = 0; b < 16; ++b)
-                if (audit.maxDepth[a][b] > 0) std::fprintf(stderr, "depth %d %d: %g\n", a, b, audit.maxDepth[a][b]);
     int fallen = 0;
     for (dBodyID body : bodies) {
         const dReal* p = dBodyGetPosition(body);
         if (!(p[2] > -0.5)) ++fallen;  // through the trimesh or the heightfield onto the floor
-        if (std::getenv("DROPIN_VERBOSE")) std::fprintf(stderr, "body %g %g %g\n", p[0], p[1], p[2]);
     }
     std::fprintf(stderr, "dropin: objects %zu contacts %ld invalid %ld fallen %d steps %ld %s\n", bodies.size(),
                  audit.contacts, audit.invalid, fallen, audit.steps, audit.firstInvalid.c_str());

@@ -254,3 +254,27 @@ TEST_CASE("planes and polygons that disagree with the points: the hull of the po
         CHECK_THROWS_WITH(data.createStrict(), Catch::Contains(expected));
     }
 }
+
+TEST_CASE("points no polygon names (inside, or outside by rounding) are taken silently, and the geom stays gdcontact's",
+          "[ode][convex][data]") {
+    OdeSession session;
+    CapturedMessages captured;
+    OdeData cube = roundedData(Polytope::box(Vec3(0.5, 0.5, 0.5)));
+    cube.points.insert(cube.points.end(), {0.0, 0.0, 0.0});        // the centre
+    cube.points.insert(cube.points.end(), {0.5 + 4e-6, 0.1, 0.2});  // outside +x by rounding
+    dGeomID geom = cube.create();
+    const auto hull = gdc::ode::polytopeOf(geom);
+    REQUIRE(hull);
+    CHECK(hull->volume() == Approx(1.0).epsilon(1e-5));
+    // Tilted and moved: the AABB ODE computes from all 10 points is the hull's, so gdcontact
+    // keeps the geom and says nothing (no "dGeomSetConvex" message).
+    dGeomID ground = dCreatePlane(0, 0, 0, 1, 0);
+    setRotation(geom, rotationAbout(Vec3(0.2, 1, 0.1), 0.3));
+    dGeomSetPosition(geom, 0.3, -0.2, 0.6);
+    const auto contacts = collideThroughOde(geom, ground, 8);
+    CHECK(!contacts.empty());
+    CHECK(gdc::ode::polytopeOf(geom) == hull);
+    CHECK(messages.empty());
+    dGeomDestroy(ground);
+    dGeomDestroy(geom);
+}
