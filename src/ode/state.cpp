@@ -306,7 +306,7 @@ void ensureFreeHook() {
 // its ODE AABB (computed by ODE from the points it was given) must match the hull's at its pose.
 bool matchesGeom(const Polytope& hull, dGeomID geom) {
     if (dGeomGetClass(geom) != dConvexClass) return false;
-    return matchesAabb(hull, poseOf(geom), geom, 32);
+    return matchesAabb(hull, poseOf(geom), geom, 32, 3);
 }
 
 }  // namespace
@@ -491,11 +491,11 @@ Vec3 unitPlaneNormalSlow(ThreadCache& cache, double a, double b, double c) {
     return slot.unit;
 }
 
-bool matchesAabb(const Polytope& hull, const Pose& pose, dGeomID geom, int bruteForceLimit) {
+bool matchesAabb(const Polytope& hull, const Pose& pose, dGeomID geom, int bruteForceLimit, int axes) {
     // The world AABB of the hull: along each world axis, the support of the hull in the local
-    // direction the axis has (a row of the rotation) — no more than the supports the core needs.
+    // direction the axis has (a row of the rotation).
     Vec3 lower, upper;
-    for (int axis = 0; axis < 3; ++axis) {
+    for (int axis = 0; axis < axes; ++axis) {
         const Vec3 direction = pose.rotation.row(axis).transpose();
         const Vec3& top = hull.vertices()[hull.supportVertex(direction, bruteForceLimit)];
         const Vec3& bottom = hull.vertices()[hull.supportVertex(-direction, bruteForceLimit)];
@@ -505,7 +505,7 @@ bool matchesAabb(const Polytope& hull, const Pose& pose, dGeomID geom, int brute
     dReal box[6];
     dGeomGetAABB(geom, box);
     const double tolerance = 1e-9 * (hull.radius() + pose.position.norm()) + 1e-300;
-    for (int axis = 0; axis < 3; ++axis) {
+    for (int axis = 0; axis < axes; ++axis) {
         if (!(std::abs(static_cast<double>(box[2 * axis]) - lower[axis]) <= tolerance)) return false;
         if (!(std::abs(static_cast<double>(box[2 * axis + 1]) - upper[axis]) <= tolerance)) return false;
     }
