@@ -34,15 +34,17 @@ extern "C" {
 #define GDC_ERROR_INVALID_ARGUMENT 1 /* bad settings or shape data, a null pointer where data is needed */
 #define GDC_ERROR_OUT_OF_MEMORY 2    /* an allocation failed; nothing was changed */
 #define GDC_ERROR_INTERNAL 3         /* any other failure inside gdcontact (a bug: please report it) */
+#define GDC_ERROR_ODE_NOT_INITIALIZED 4 /* gdcInstall before dInitODE2 (or after dCloseODE): call dInitODE2 first */
 
 /* Values of gdcSettings.normalMethod (gdc::NormalMethod). */
 #define GDC_NORMAL_GROWTH_DISTANCE 0 /* the paper's growth-distance normal (default) */
 #define GDC_NORMAL_SEPARATING_AXIS 1 /* the exact minimum-translation normal (slower for big hulls) */
 
-/* The fields of gdc::Settings, in its order, with its units and meaning (settings.hpp):
- * rayCastTolerance (relative, > 0), maxRayCastIterations (≥ 1), angularTolerance (radians, ≥ 0),
- * margin (metres, ≥ 0), spanContactRegion (0 or not 0), maxContacts (1..16),
- * bruteForceSupportLimit (≥ 0), coplanarTolerance (radians, ≥ 0), normalMethod (GDC_NORMAL_*).
+/* The fields of gdc::Settings, in its order, with its units and the bounds gdcInstall checks
+ * (settings.hpp says why each bound is there): rayCastTolerance (relative, 1e-15..1e-3),
+ * maxRayCastIterations (1..10000), angularTolerance (radians, 0..0.5), margin (length unit, 0..1),
+ * spanContactRegion (0 or not 0), maxContacts (1..16), bruteForceSupportLimit (0..65536),
+ * coplanarTolerance (radians, 0..0.1), normalMethod (GDC_NORMAL_*).
  * Always start from gdcDefaultSettings(): fields are only ever added at the end. */
 typedef struct gdcSettings {
     double rayCastTolerance;
@@ -61,22 +63,29 @@ GDCONTACT_C_API void gdcDefaultSettings(gdcSettings* settings) GDCONTACT_C_NOEXC
 
 /* gdc::ode::install: routes ODE's box–box, box–convex, convex–convex, box–plane and convex–plane
  * pairs to gdcontact. Call after dInitODE2() (and again after a new dInitODE2: dCloseODE forgets
- * it). NULL: the defaults. Returns GDC_OK, or an error code with ODE's colliders and the
- * settings in use left as they were (GDC_ERROR_INVALID_ARGUMENT: a field out of its range). */
+ * it; calling it again in one session replaces the settings). NULL: the defaults. Returns GDC_OK,
+ * or an error code with ODE's colliders and the settings in use left as they were
+ * (GDC_ERROR_INVALID_ARGUMENT: a field out of its range; GDC_ERROR_ODE_NOT_INITIALIZED: called
+ * before dInitODE2 or after dCloseODE). */
 GDCONTACT_C_API int gdcInstall(const gdcSettings* settings) GDCONTACT_C_NOEXCEPT;
 
 /* gdc::ode::collide, a dColliderFn: usable in a near callback without gdcInstall. ODE's contact
  * convention (normal from o2 into o1, depth ≥ 0, at most flags & 0xffff contacts at stride skip);
  * uses the settings of the last gdcInstall. Returns the number of contacts; a failure inside
  * gdcontact is reported through dMessage and gives 0, misuse (a geom class it does not handle,
- * a dConvex not made by gdcCreateConvex*, skip < sizeof(dContactGeom)) goes to dError. */
+ * skip < sizeof(dContactGeom)) goes to dError. A dConvex gdcontact does not know (plain
+ * dCreateConvex, or changed by dGeomSetConvex) is collided by ODE's own convex collider, with one
+ * dMessage. */
 GDCONTACT_C_API int gdcCollide(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact,
                                int skip) GDCONTACT_C_NOEXCEPT;
 
 /* gdc::ode::createConvex in dCreateConvex's layout: planes (a,b,c,d per face), points (x,y,z),
  * polygons (per face its vertex count, then its point indices). The arrays are copied. A real
  * dConvex in `space` (may be 0) whose hull gdcontact knows; freed by dGeomDestroy as usual.
- * Returns 0 on error (gdcLastError() names the problem). */
+ * Takes what dCreateConvex takes: data rounded to 6 digits passes; where the planes or polygons
+ * disagree with the points (flipped, reordered, non-planar, missing) the geom is the hull of the
+ * points, with one dMessage. Returns 0 only for data ODE cannot use either (NULL arrays, an index
+ * out of range, NaN/Inf, points without interior; gdcLastError() names the problem). */
 GDCONTACT_C_API dGeomID gdcCreateConvex(dSpaceID space, const dReal* planes, unsigned planeCount,
                                         const dReal* points, unsigned pointCount,
                                         const unsigned* polygons) GDCONTACT_C_NOEXCEPT;
@@ -86,6 +95,12 @@ GDCONTACT_C_API dGeomID gdcCreateConvex(dSpaceID space, const dReal* planes, uns
  * points without interior (gdcLastError() says which). */
 GDCONTACT_C_API dGeomID gdcCreateConvexFromPoints(dSpaceID space, const dReal* points,
                                                   unsigned pointCount) GDCONTACT_C_NOEXCEPT;
+
+/* As gdcCreateConvex, but planes and polygons that disagree with the points are an error
+ * (0, gdcLastError() names the plane, polygon or point) instead of the hull of the points. */
+GDCONTACT_C_API dGeomID gdcCreateConvexStrict(dSpaceID space, const dReal* planes, unsigned planeCount,
+                                              const dReal* points, unsigned pointCount,
+                                              const unsigned* polygons) GDCONTACT_C_NOEXCEPT;
 
 /* This thread's last error message, "" if none. gdcInstall and gdcCreateConvex* set it when they
  * fail and clear it when they succeed. The string stays valid until this thread's next call of

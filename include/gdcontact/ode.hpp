@@ -19,18 +19,21 @@ namespace gdc::ode {
 
 /// Routes ODE's box–box, box–convex, convex–convex, box–plane and convex–plane pairs to
 /// gdcontact (through dSetColliderOverride). Call after dInitODE2(); dCloseODE() resets ODE's
-/// collider table and so forgets it. `settings` are validated (InvalidInput) and then used by
-/// every later collide() call that does not pass its own. Contacts a dCollide call returns are at
-/// most min(settings.maxContacts, flags & 0xffff).
+/// collider table and so forgets it (call it again after a new dInitODE2()). Calling it again in
+/// the same session replaces the settings. `settings` are checked by gdc::validate (InvalidInput
+/// naming the field and its bounds); called while ODE is not initialised it throws InvalidInput
+/// saying to call dInitODE2() first. Contacts a dCollide call returns are at most
+/// min(settings.maxContacts, flags & 0xffff).
 GDCONTACT_API void install(const Settings& settings = {});
 
 /// dColliderFn-compatible: usable directly, in a near-callback, without install(). Follows ODE's
 /// contact convention (normal from o2 into o1, unit; depth ≥ 0; g1/g2 as received;
 /// side1 = side2 = -1; at most flags & 0xffff contacts at stride `skip`). Handles box, convex
-/// (made by createConvex) and plane geoms in any order. Uses the settings of the last install()
-/// (the defaults before any). Never throws: a failure inside gdcontact is reported through
-/// dMessage and yields 0 contacts; misuse (an unsupported class, a dConvex not made by
-/// createConvex, skip < sizeof(dContactGeom)) is reported through dError.
+/// and plane geoms in any order. Uses the settings of the last install() (the defaults before
+/// any). A dConvex gdcontact does not know (made by plain dCreateConvex, or changed by
+/// dGeomSetConvex) is collided by ODE's own convex collider, with one dMessage (docs/ode.md).
+/// Never throws: a failure inside gdcontact is reported through dMessage and yields 0 contacts;
+/// misuse (an unsupported class, skip < sizeof(dContactGeom)) is reported through dError.
 GDCONTACT_API int collide(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip);
 
 /// As above with explicit settings (not validated per call; pass settings that install() would
@@ -47,12 +50,21 @@ GDCONTACT_API dGeomID createConvex(dSpaceID space, const dReal* points, unsigned
 
 /// dCreateConvex's layout: `planeCount` planes (a,b,c,d: unit outward normal, n·x = d on the
 /// face), `pointCount` points, and per plane its polygon (vertex count, then that many point
-/// indices, counter-clockwise seen from outside). The data is validated — unit normals, plane
-/// offsets matching their polygons, counter-clockwise winding, every point inside every plane,
-/// a closed surface — and copied (the caller may free its arrays). Throws InvalidInput naming the
-/// offending plane, polygon or point.
+/// indices, counter-clockwise seen from outside). Takes what dCreateConvex takes: the data is
+/// checked to its own precision (1e-5 of the shape's size: data printed with 6 digits passes) and
+/// copied (the caller may free its arrays). Where the planes and polygons disagree with the points
+/// (flipped or reordered planes, non-planar or missing faces) the geom is the convex hull of the
+/// points — the solid ODE's convex collider sees — ODE is given that hull's planes and polygons,
+/// and one dMessage says so. Throws InvalidInput only for data ODE cannot use either: null arrays,
+/// an index out of range, non-finite numbers, fewer than 4 points or points without interior.
 GDCONTACT_API dGeomID createConvex(dSpaceID space, const dReal* planes, unsigned planeCount,
                      const dReal* points, unsigned pointCount, const unsigned* polygons);
+
+/// As createConvex (dCreateConvex's layout), for data that must be right as given: where the
+/// planes and polygons disagree with the points it throws InvalidInput naming the offending plane,
+/// polygon or point instead of taking the hull.
+GDCONTACT_API dGeomID createConvexStrict(dSpaceID space, const dReal* planes, unsigned planeCount,
+                                         const dReal* points, unsigned pointCount, const unsigned* polygons);
 
 /// The polytope gdcontact uses for a geom, in the geom's local frame: for a dBox, a box of its
 /// current lengths; for a dConvex made by createConvex, its hull. nullptr for every other geom

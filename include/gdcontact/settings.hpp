@@ -1,7 +1,16 @@
-// Every tunable of gdcontact, with its unit and the trade-off it controls.
+// Every tunable of gdcontact, with its unit, the trade-off it controls and the bounds
+// gdc::validate checks (install() and gdcInstall refuse settings outside them).
 #pragma once
 
+#include <gdcontact/export.hpp>
+
 namespace gdc {
+
+struct Settings;
+
+/// Checks every field of `settings` against the bounds stated at the field. Throws InvalidInput
+/// naming the first field out of bounds, its value and its bounds. NaN is out of every bound.
+GDCONTACT_API void validate(const Settings& settings);
 
 /// How the contact normal is found (stage 1). The paper's method is GrowthDistance; the others
 /// exist to measure the speed/accuracy trade against it.
@@ -18,21 +27,33 @@ struct Settings {
     /// Stage 1 — GJK ray-cast convergence, as a fraction of the pair's size (sum of the two
     /// bounding radii; unitless). Smaller: a more exact normal and hit point, a few more GJK
     /// iterations. Relative, so a scene behaves the same at 1 mm and 1 km.
+    /// Bounds [1e-15, 1e-3]: below 1e-15 it asks for less than double rounding on a pair's size
+    /// (the ray cast would only run into maxRayCastIterations); above 1e-3 the normal and the
+    /// hit point are off by a visible part of the shapes.
     double rayCastTolerance = 1e-10;
 
     /// Stage 1 — cap on GJK ray-cast iterations (count). Reached only on grazing rays or huge
     /// hulls; the best normal so far is used. Lower: bounded worst-case time, possibly a coarser normal.
+    /// Bounds [1, 10000]: at least one iteration; beyond 10000 a grazing ray costs milliseconds
+    /// per pair while the normal stopped improving long before (converged rays take ~10).
     int maxRayCastIterations = 64;
 
     /// Stage 2 — Gauss-map angular tolerance (radians). A face whose normal is within this angle
     /// of the contact normal is taken as the contact feature (face > edge > vertex). Larger: flat
     /// resting contacts are recognised earlier (stabler stacks) at the price of reporting a face
     /// for a slightly tilted body (its far points then carry negative depth and are dropped).
+    /// Bounds [0, 0.5] rad: 0 recognises only exactly aligned faces; above 0.5 rad (≈ 29°) a
+    /// face far from the contact normal would be taken as the contact feature, and most of its
+    /// points dropped as negative depth — ODE would get one or two points for a tilted body.
     double angularTolerance = 0.05;  // ≈ 2.9°
 
     /// Stage 3 — contacts are kept where the shapes overlap by at least −margin (metres, the
     /// scene's length unit). 0: only touching/overlapping points. Positive: speculative contacts
     /// for points that are about to touch (fewer missed contacts at large time steps, more points).
+    /// Bounds [0, 1] (scene length unit): negative would drop touching contacts; ODE takes every
+    /// contact as active, so the ODE adapter passes on only points with depth ≥ 0 and a margin
+    /// matters there only with spanContactRegion. A margin of a whole length unit (a metre)
+    /// means every pair within a metre makes speculative points: a unit or a typing mistake.
     double margin = 0.0;
 
     /// Stage 3 — also report where the contact region ends: where an edge of the intersection runs
@@ -45,18 +66,24 @@ struct Settings {
 
     /// Reduction — most contact points returned for one pair (count, 1…16). Fewer: cheaper for the
     /// solver, a coarser support polygon (the deepest point and the largest area are always kept).
+    /// Bounds [1, 16]: 16 is the size of a Manifold (kMaxManifoldPoints).
     int maxContacts = 8;
 
     /// Support mapping — polytopes with at most this many vertices are searched by brute force,
     /// larger ones by hill climbing over vertex adjacency (count). Measured cross-over: see
     /// docs/benchmarks.md.
+    /// Bounds [0, 65536]: 0 always climbs; above 65536 vertices a brute-force support costs
+    /// more than 100 µs per call — every polytope gdcontact handles well is below it.
     int bruteForceSupportLimit = 32;
 
     /// Polytope construction — faces whose normals differ by less than this angle (radians) are
     /// merged into one face. Larger: hulls from noisy points get clean faces; too large merges
     /// genuinely distinct faces (curved hulls lose their shape).
+    /// Bounds [0, 0.1] rad: 0 merges only exactly coplanar faces; above 0.1 rad (≈ 5.7°) a
+    /// 32-sided prism's sides (0.2 rad apart) would start to merge — no longer rounding noise.
     double coplanarTolerance = 1e-6;
 
+    /// One of the NormalMethod values (checked: a value cast from an integer may be neither).
     NormalMethod normalMethod = NormalMethod::GrowthDistance;
 };
 

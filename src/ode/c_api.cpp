@@ -4,6 +4,8 @@
 #include <gdcontact/ode.h>
 #include <gdcontact/ode.hpp>
 
+#include "state.hpp"
+
 #include <exception>
 #include <new>
 #include <stdexcept>
@@ -68,7 +70,7 @@ gdc::Settings toSettings(const gdcSettings& in) {
     out.bruteForceSupportLimit = in.bruteForceSupportLimit;
     out.coplanarTolerance = in.coplanarTolerance;
     out.normalMethod = static_cast<gdc::NormalMethod>(in.normalMethod);
-    return out;  // the ranges are checked by gdc::ode::install, which names the field
+    return out;  // the ranges are checked by gdc::validate (in gdc::ode::install), which names the field
 }
 
 }  // namespace
@@ -90,6 +92,14 @@ void gdcDefaultSettings(gdcSettings* settings) noexcept {
 }
 
 int gdcInstall(const gdcSettings* settings) noexcept {
+    try {
+        if (!gdc::ode::detail::odeIsInitialized()) {
+            setError("", "gdcontact: gdcInstall was called while ODE is not initialised: call dInitODE2(0) first "
+                         "(and again after dCloseODE()), then gdcInstall");
+            return GDC_ERROR_ODE_NOT_INITIALIZED;
+        }
+    } catch (...) {  // cannot happen (a dlsym and a load); never let anything out
+    }
     return guarded([&] {
         if (!settings) {
             gdc::ode::install();
@@ -126,6 +136,19 @@ dGeomID gdcCreateConvexFromPoints(dSpaceID space, const dReal* points, unsigned 
         if (!points) throw gdc::InvalidInput("gdcCreateConvexFromPoints: points is NULL");
         geom = gdc::ode::createConvex(space, points, pointCount);
         if (!geom) throw std::runtime_error("gdcCreateConvexFromPoints: no geom was created");
+    });
+    return code == GDC_OK ? geom : nullptr;
+}
+
+dGeomID gdcCreateConvexStrict(dSpaceID space, const dReal* planes, unsigned planeCount, const dReal* points,
+                              unsigned pointCount, const unsigned* polygons) noexcept {
+    dGeomID geom = nullptr;
+    const int code = guarded([&] {
+        if (!planes) throw gdc::InvalidInput("gdcCreateConvexStrict: planes is NULL");
+        if (!points) throw gdc::InvalidInput("gdcCreateConvexStrict: points is NULL");
+        if (!polygons) throw gdc::InvalidInput("gdcCreateConvexStrict: polygons is NULL");
+        geom = gdc::ode::createConvexStrict(space, planes, planeCount, points, pointCount, polygons);
+        if (!geom) throw std::runtime_error("gdcCreateConvexStrict: no geom was created");
     });
     return code == GDC_OK ? geom : nullptr;
 }

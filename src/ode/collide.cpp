@@ -5,8 +5,11 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <dlfcn.h>
 #include <exception>
 #include <functional>
 #include <string>
@@ -59,25 +62,155 @@ Pose readPose(dGeomID geom) {
            " (leave that pair to ODE: install() overrides only the supported pairs)");
 }
 
-[[noreturn, gnu::cold, gnu::noinline]] void notCreatedByGdcontact() {
-    misuse("a dConvex geom made with plain dCreateConvex reached gdc::ode::collide. ODE "
-           "0.16.2 gives no access to a dConvex's data, so gdcontact cannot collide it. "
-           "Create the geom with gdc::ode::createConvex(space, planes, planeCount, points, "
-           "pointCount, polygons) (the same arguments as dCreateConvex) or "
-           "gdc::ode::createConvex(space, points, pointCount) instead.");
+// ---- dConvex geoms gdcontact does not know: ODE's own collider ----
+//
+// ODE 0.16.2 keeps only pointers to a dConvex's arrays and has no getter for them, and its
+// dxConvex layout is private: gdcontact cannot read a convex it did not create (reading ODE's
+// private struct would tie it to one build of ODE). Such pairs go to the collider ODE's own
+// table holds for them. dSetColliderOverride replaced that table entry and ODE has no getter for
+// it either, but Debian's libode exports the colliders themselves (C++ names, dColliderFn's
+// signature); they are found once with dlsym. Without them (another ODE build) the pair gets no
+// contacts, with a message — never an abort.
+struct OdeColliders {
+    dColliderFn* convexConvex;  // libccd MPR (dLIBCCD_CONVEX_CONVEX)
+    dColliderFn* convexBox;     // libccd MPR (dLIBCCD_CONVEX_BOX)
+    dColliderFn* convexPlane;
+};
+
+const OdeColliders& odeColliders() {
+    static const OdeColliders colliders = [] {
+        auto find = [](const char* name) { return reinterpret_cast<dColliderFn*>(dlsym(RTLD_DEFAULT, name)); };
+        return OdeColliders{find("_Z23dCollideConvexConvexCCDP6dxGeomS0_iP12dContactGeomi"),
+                            find("_Z20dCollideConvexBoxCCDP6dxGeomS0_iP12dContactGeomi"),
+                            find("_Z19dCollideConvexPlaneP6dxGeomS0_iP12dContactGeomi")};
+    }();
+    return colliders;
 }
 
-// The polytope (geom frame) of a box or createConvex geom; misuse for any other class.
-const Polytope& polytopeFor(dGeomID geom, int geomClass, detail::ThreadCache& cache) {
+// One message per kind and process: a scene full of plain convexes must not flood the log.
+void sayOnce(std::atomic<bool>& said, const char* message) {
+    if (!said.exchange(true, std::memory_order_relaxed)) dMessage(d_ERR_UNKNOWN, "%s", message);
+}
+std::atomic<bool> saidPlainConvex{false}, saidSetConvex{false}, saidNoOdeCollider{false};
+
+[[gnu::cold, gnu::noinline]] void reportPlainConvex() {
+    sayOnce(saidPlainConvex,
+            "gdcontact: a dConvex made with plain dCreateConvex is collided by ODE's own convex collider "
+            "(libccd: one contact per pair). ODE 0.16.2 gives no access to a dConvex's data, so gdcontact "
+            "cannot collide it; for gdcontact's contacts create it with gdc::ode::createConvex(space, planes, "
+            "planeCount, points, pointCount, polygons) — the same arguments as dCreateConvex. (Said once.)");
+}
+
+[[gnu::cold, gnu::noinline]] void reportSetConvex() {
+    sayOnce(saidSetConvex,
+            "gdcontact: a gdc::ode::createConvex geom was given other data with dGeomSetConvex (its bounding "
+            "box no longer matches its hull); gdcontact no longer knows its shape and leaves its pairs to "
+            "ODE's own convex collider. Create a new geom with gdc::ode::createConvex instead of calling "
+            "dGeomSetConvex. (Said once.)");
+}
+
+// The pair (o1, o2), one of them a dConvex gdcontact does not know, collided by ODE's collider
+// for it, as dCollide would (mirrored when ODE's table has the pair the other way round). Only
+// valid contacts are kept: libccd gives a zero normal for exactly touching shapes, which would
+// make ODE abort.
+int collideWithOde(dGeomID o1, int class1, dGeomID o2, int class2, int maxContacts, dContactGeom* contact,
+                   int skip) {
+    const OdeColliders& ode = odeColliders();
+    dColliderFn* function = nullptr;
+    bool reverse = false;
+    if (class1 == dConvexClass && class2 == dConvexClass) {
+        function = ode.convexConvex;
+    } else if (class1 == dConvexClass || class2 == dConvexClass) {
+        reverse = class1 != dConvexClass;
+        const int other = reverse ? class1 : class2;
+        function = other == dBoxClass ? ode.convexBox : other == dPlaneClass ? ode.convexPlane : nullptr;
+    }
+    if (!function) {
+        sayOnce(saidNoOdeCollider,
+                "gdcontact: this libode does not export ODE's convex colliders, so pairs with a plain "
+                "dCreateConvex geom get no contacts; create such geoms with gdc::ode::createConvex. (Said once.)");
+        return 0;
+    }
+    const int count = reverse ? function(o2, o1, maxContacts, contact, skip)
+                              : function(o1, o2, maxContacts, contact, skip);
+    int kept = 0;
+    char* bytes = reinterpret_cast<char*>(contact);
+    for (int i = 0; i < std::min(count, maxContacts); ++i) {
+        dContactGeom current = *reinterpret_cast<dContactGeom*>(bytes + static_cast<std::ptrdiff_t>(i) * skip);
+        Vec3 normal(current.normal[0], current.normal[1], current.normal[2]);
+        const double length = normal.norm();
+        const bool valid = std::isfinite(length) && std::abs(length - 1.0) < 1e-3 &&
+                           std::isfinite(current.depth) && std::isfinite(current.pos[0]) &&
+                           std::isfinite(current.pos[1]) && std::isfinite(current.pos[2]);
+        if (!valid) continue;
+        if (reverse) normal = -normal;
+        normal /= length;
+        for (int axis = 0; axis < 3; ++axis) current.normal[axis] = normal[axis];
+        current.depth = std::max<dReal>(current.depth, 0);
+        current.g1 = o1;
+        current.g2 = o2;
+        current.side1 = -1;
+        current.side2 = -1;
+        *reinterpret_cast<dContactGeom*>(bytes + static_cast<std::ptrdiff_t>(kept) * skip) = current;
+        ++kept;
+    }
+    return kept;
+}
+
+// Whether the geom's AABB along world x — ODE computes it from the points it holds — is the
+// hull's at `pose`: two support queries, warm-started where this thread found them last for this
+// geom. Only x: the whole box cost ~11 % of a hull–hull call (tests/ode/adapter_overhead.sh), and
+// other data almost never has the same x extent at every pose a geom takes, so a change is seen
+// at the latest when the geom turns. (matchesAabb checks the whole box where trust is lost.)
+bool matchesXExtent(const Polytope& hull, const Pose& pose, dGeomID geom, int bruteForceLimit,
+                    detail::ThreadCache& cache) {
+    // Fibonacci hashing of the address (allocators space geoms regularly): the top 6 bits.
+    static_assert(detail::ThreadCache::kAabbHints == 64, "the hash takes the top 6 bits");
+    const auto address = static_cast<std::uint64_t>(reinterpret_cast<std::uintptr_t>(geom));
+    detail::ThreadCache::AabbHint& hint = cache.aabbHints[(address * 0x9E3779B97F4A7C15ull) >> 58];
+    if (hint.geom != geom) hint = detail::ThreadCache::AabbHint{geom, -1, -1};
+    const Vec3 direction = pose.rotation.row(0).transpose();
+    // With a hint, climb from it (a few neighbours) even where a cold query would scan every vertex.
+    hint.upper = hull.supportVertex(direction, hint.upper >= 0 ? 0 : bruteForceLimit, hint.upper);
+    hint.lower = hull.supportVertex(-direction, hint.lower >= 0 ? 0 : bruteForceLimit, hint.lower);
+    const double upper = direction.dot(hull.vertices()[hint.upper]) + pose.position.x();
+    const double lower = direction.dot(hull.vertices()[hint.lower]) + pose.position.x();
+    dReal box[6];
+    dGeomGetAABB(geom, box);
+    const double tolerance = 1e-9 * (hull.radius() + pose.position.norm()) + 1e-300;
+    return std::abs(static_cast<double>(box[0]) - lower) <= tolerance &&
+           std::abs(static_cast<double>(box[1]) - upper) <= tolerance;
+}
+
+// The hull of a convex geom at `pose`, or nullptr when gdcontact does not know the geom's shape:
+// a plain dCreateConvex geom, or a createConvex geom given other data by dGeomSetConvex (its
+// AABB, which ODE computes from the points it holds, no longer matches the hull).
+const Polytope* knownHull(dGeomID geom, const Pose& pose, const Settings& settings, detail::ThreadCache& cache) {
+    const Polytope* hull = detail::borrowedConvex(cache, geom);
+    if (!hull) {
+        reportPlainConvex();
+        return nullptr;
+    }
+    if (!matchesXExtent(*hull, pose, geom, settings.bruteForceSupportLimit, cache)) {
+        // A non-finite pose makes every AABB differ: the core reports it ("not finite").
+        if (!pose.isFinite()) return hull;
+        reportSetConvex();
+        return nullptr;
+    }
+    return hull;
+}
+
+// The polytope (geom frame) of a box or known convex geom; nullptr for an unknown convex; misuse
+// for any other class.
+const Polytope* polytopeFor(dGeomID geom, int geomClass, const Pose& pose, const Settings& settings,
+                            detail::ThreadCache& cache) {
     if (geomClass == dBoxClass) {
         dVector3 lengths;
         dGeomBoxGetLengths(geom, lengths);
-        return detail::borrowedBoxPolytope(cache, 0.5 * lengths[0], 0.5 * lengths[1], 0.5 * lengths[2]);
+        return &detail::borrowedBoxPolytope(cache, 0.5 * lengths[0], 0.5 * lengths[1], 0.5 * lengths[2]);
     }
     if (geomClass != dConvexClass) unsupportedClass(geomClass);
-    const Polytope* hull = detail::borrowedConvex(cache, geom);
-    if (!hull) notCreatedByGdcontact();
-    return *hull;
+    return knownHull(geom, pose, settings, cache);
 }
 
 HalfSpace halfSpaceOf(dGeomID plane, detail::ThreadCache& cache) {
@@ -175,9 +308,11 @@ int collidePolytopeWithPlane(dGeomID o1, int class1, dGeomID o2, int class2, int
     const bool planeFirst = class1 == dPlaneClass;
     if (planeFirst && class2 == dPlaneClass) misuse("gdc::ode::collide: plane–plane is not a supported pair");
     dGeomID body = planeFirst ? o2 : o1;
-    const Polytope& polytope = polytopeFor(body, planeFirst ? class2 : class1, cache);
-    const HalfSpace halfSpace = halfSpaceOf(planeFirst ? o1 : o2, cache);
     const Pose pose = readPose(body);
+    const Polytope* known = polytopeFor(body, planeFirst ? class2 : class1, pose, settings, cache);
+    if (!known) return collideWithOde(o1, class1, o2, class2, maxContacts, contact, skip);
+    const Polytope& polytope = *known;
+    const HalfSpace halfSpace = halfSpaceOf(planeFirst ? o1 : o2, cache);
     const Manifold manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) {
         return gdc::collide(polytope, pose, halfSpace, pairSettings);
     });
@@ -199,10 +334,13 @@ int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int
     const int class2 = dGeomGetClass(o2);
     if (class1 == dPlaneClass || class2 == dPlaneClass)
         return collidePolytopeWithPlane(o1, class1, o2, class2, maxContacts, contact, skip, settings, cache);
-    const Polytope& polytope1 = polytopeFor(o1, class1, cache);
-    const Polytope& polytope2 = polytopeFor(o2, class2, cache);
     const Pose pose1 = readPose(o1);
     const Pose pose2 = readPose(o2);
+    const Polytope* known1 = polytopeFor(o1, class1, pose1, settings, cache);
+    const Polytope* known2 = polytopeFor(o2, class2, pose2, settings, cache);
+    if (!known1 || !known2) return collideWithOde(o1, class1, o2, class2, maxContacts, contact, skip);
+    const Polytope& polytope1 = *known1;
+    const Polytope& polytope2 = *known2;
     const bool swapped = comesFirst(pose2.position, o2, pose1.position, o1);
     const Manifold manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) {
         return swapped ? gdc::collide(polytope2, pose2, polytope1, pose1, pairSettings)
@@ -211,24 +349,6 @@ int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int
     if (manifold.empty()) return 0;
     return writeContacts(manifold, swapped, polytope1.radius() + polytope2.radius(), maxContacts, o1, o2,
                          contact, skip);
-}
-
-void validate(const Settings& settings) {
-    auto require = [](bool ok, const char* what) {
-        if (!ok) throw InvalidInput(std::string("gdc::ode::install: ") + what);
-    };
-    require(settings.maxContacts >= 1 && settings.maxContacts <= kMaxManifoldPoints,
-            "Settings::maxContacts must be in 1..16");
-    require(std::isfinite(settings.rayCastTolerance) && settings.rayCastTolerance > 0.0,
-            "Settings::rayCastTolerance must be finite and positive");
-    require(settings.maxRayCastIterations >= 1, "Settings::maxRayCastIterations must be at least 1");
-    require(std::isfinite(settings.angularTolerance) && settings.angularTolerance >= 0.0,
-            "Settings::angularTolerance must be finite and non-negative");
-    require(std::isfinite(settings.margin) && settings.margin >= 0.0,
-            "Settings::margin must be finite and non-negative");
-    require(settings.bruteForceSupportLimit >= 0, "Settings::bruteForceSupportLimit must be non-negative");
-    require(std::isfinite(settings.coplanarTolerance) && settings.coplanarTolerance >= 0.0,
-            "Settings::coplanarTolerance must be finite and non-negative");
 }
 
 // The installed settings (`settings` null) or the caller's. ODE is C: no exception may cross
@@ -255,14 +375,21 @@ int collideGuarded(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int
     return 0;
 }
 
-int collideInstalled(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip) {
+int collideInstalled(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip) noexcept {
     return collideGuarded(o1, o2, flags, contact, skip, nullptr);
 }
 
 }  // namespace
 
 void install(const Settings& settings) {
-    validate(settings);
+    if (!detail::odeIsInitialized())
+        throw InvalidInput("gdc::ode::install() was called while ODE is not initialised: call dInitODE2(0) "
+                           "first (and again after dCloseODE()), then install()");
+    gdc::validate(settings);
+    // A new session (or new settings) says its one-time messages again.
+    saidPlainConvex.store(false, std::memory_order_relaxed);
+    saidSetConvex.store(false, std::memory_order_relaxed);
+    saidNoOdeCollider.store(false, std::memory_order_relaxed);
     detail::setInstalledSettings(settings);
     dSetColliderOverride(dBoxClass, dBoxClass, &collideInstalled);
     dSetColliderOverride(dBoxClass, dConvexClass, &collideInstalled);

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <dlfcn.h>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -259,15 +260,20 @@ void forgetConvex(const void* address) noexcept {
 
 // ODE frees every geom through dFree (its objects' operator delete), after the geom's destructor
 // ran. This is the only notice of a geom's end ODE 0.16.2 gives; the hull arrays are released here.
-void freeHook(void* pointer, dsizeint size) {
+// ODE calls it from C: nothing may leave it (a lock failure leaves the hull registered — an AABB
+// mismatch later keeps it from a new geom at that address — and the memory is still freed).
+void freeHook(void* pointer, dsizeint size) noexcept {
     State& s = state();
     if (pointer && s.convexCount.load(std::memory_order_relaxed) != 0) {
-        bool registered;
-        {
-            std::shared_lock lock(s.convexMutex);
-            registered = s.convexes.count(pointer) != 0;
+        try {
+            bool registered;
+            {
+                std::shared_lock lock(s.convexMutex);
+                registered = s.convexes.count(pointer) != 0;
+            }
+            if (registered) forgetConvex(pointer);
+        } catch (...) {
         }
-        if (registered) forgetConvex(pointer);
     }
     if (dFreeFunction* previous = s.previousFree.load(std::memory_order_acquire))
         previous(pointer, size);
@@ -300,21 +306,7 @@ void ensureFreeHook() {
 // its ODE AABB (computed by ODE from the points it was given) must match the hull's at its pose.
 bool matchesGeom(const Polytope& hull, dGeomID geom) {
     if (dGeomGetClass(geom) != dConvexClass) return false;
-    const Pose pose = poseOf(geom);
-    Vec3 lower = Vec3::Constant(INFINITY), upper = Vec3::Constant(-INFINITY);
-    for (const Vec3& vertex : hull.vertices()) {
-        const Vec3 world = pose.apply(vertex);
-        lower = lower.cwiseMin(world);
-        upper = upper.cwiseMax(world);
-    }
-    dReal box[6];
-    dGeomGetAABB(geom, box);
-    const double tolerance = 1e-9 * (hull.radius() + pose.position.norm()) + 1e-300;
-    for (int axis = 0; axis < 3; ++axis) {
-        if (std::abs(static_cast<double>(box[2 * axis]) - lower[axis]) > tolerance) return false;
-        if (std::abs(static_cast<double>(box[2 * axis + 1]) - upper[axis]) > tolerance) return false;
-    }
-    return true;
+    return matchesAabb(hull, poseOf(geom), geom, 32, 3);
 }
 
 }  // namespace
@@ -497,6 +489,35 @@ Vec3 unitPlaneNormalSlow(ThreadCache& cache, double a, double b, double c) {
     slot.raw[2] = c;
     slot.unit = Vec3(a, b, c).normalized();
     return slot.unit;
+}
+
+bool matchesAabb(const Polytope& hull, const Pose& pose, dGeomID geom, int bruteForceLimit, int axes) {
+    // The world AABB of the hull: along each world axis, the support of the hull in the local
+    // direction the axis has (a row of the rotation).
+    Vec3 lower, upper;
+    for (int axis = 0; axis < axes; ++axis) {
+        const Vec3 direction = pose.rotation.row(axis).transpose();
+        const Vec3& top = hull.vertices()[hull.supportVertex(direction, bruteForceLimit)];
+        const Vec3& bottom = hull.vertices()[hull.supportVertex(-direction, bruteForceLimit)];
+        upper[axis] = direction.dot(top) + pose.position[axis];
+        lower[axis] = direction.dot(bottom) + pose.position[axis];
+    }
+    dReal box[6];
+    dGeomGetAABB(geom, box);
+    const double tolerance = 1e-9 * (hull.radius() + pose.position.norm()) + 1e-300;
+    for (int axis = 0; axis < axes; ++axis) {
+        if (!(std::abs(static_cast<double>(box[2 * axis]) - lower[axis]) <= tolerance)) return false;
+        if (!(std::abs(static_cast<double>(box[2 * axis + 1]) - upper[axis]) <= tolerance)) return false;
+    }
+    return true;
+}
+
+bool odeIsInitialized() {
+    // Set by dInitODE2's first call (odeou's assertion handler), reset by the matching dCloseODE.
+    static void* const hook =
+        dlsym(RTLD_DEFAULT, "_ZN5odeou28CAssertionCheckCustomization24g_fnAssertFailureHandlerE");
+    if (!hook) return true;
+    return *static_cast<void* const volatile*>(hook) != nullptr;
 }
 
 std::atomic<std::uint64_t> installedSettingsGeneration{1};

@@ -60,6 +60,17 @@ std::shared_ptr<const Polytope> boxPolytope(double halfX, double halfY, double h
 
 void setInstalledSettings(const Settings& settings);
 
+/// Whether ODE is initialised (between dInitODE2() and its matching dCloseODE()). ODE 0.16.2 has
+/// no public query and asserts inside (without naming the call order) when install() runs
+/// before dInitODE2(); Debian's libode exports the hook its initialisation sets (dlsym), so this
+/// reads it. True when the hook is not exported (another build of ODE): then it cannot tell.
+bool odeIsInitialized();
+
+/// Whether the geom's AABB (which ODE computes from the points it holds) is that of `hull` at
+/// `pose` (within rounding), along the first `axes` world axes (1: x only, two support queries;
+/// 3: the whole box). False after dGeomSetConvex gave the geom other points.
+bool matchesAabb(const Polytope& hull, const Pose& pose, dGeomID geom, int bruteForceLimit, int axes);
+
 // ---- collide()'s lookups: no lock and no reference count on a hit ----
 
 /// Box sizes a thread keeps at once (least recently used evicted).
@@ -96,6 +107,17 @@ struct ThreadCache {
     static constexpr int kPlaneSlots = 4;
     PlaneSlot planes[kPlaneSlots];
     int lastPlane = 0;  // also the next slot to refill (round robin)
+
+    // Where the x-extent check of a convex's AABB (collide.cpp) found the hull's extreme vertices
+    // last time, per geom (direct-mapped by address): the next check climbs from there, a few
+    // steps for a body that moved a little. Only a hint: a stale entry costs a longer climb.
+    struct AabbHint {
+        const void* geom = nullptr;
+        int lower = -1;
+        int upper = -1;
+    };
+    static constexpr int kAabbHints = 64;
+    AabbHint aabbHints[kAabbHints];
 
     std::uint64_t settingsGeneration = 0;  // 0: never copied
     Settings settings;

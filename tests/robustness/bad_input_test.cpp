@@ -243,24 +243,37 @@ TEST_CASE("ODE: createConvex refuses empty, collinear and coplanar point sets wi
     CHECK(gdc::ode::liveConvexCount() == before);  // nothing half-made is left behind
 }
 
-TEST_CASE("ODE: createConvex refuses non-convex and wrongly wound polygons, naming the plane", "[robustness][bad][ode]") {
+TEST_CASE("ODE: createConvexStrict refuses non-convex and wrongly wound polygons, naming the plane; createConvex takes the hull",
+          "[robustness][bad][ode]") {
     OdeSession session;
     // A cube of half size 1 in dCreateConvex's layout; vertex i has the signs of bits x:1, y:2, z:4.
     std::vector<dReal> points = flatten(boxCorners(Vec3::Constant(1)));
     std::vector<dReal> planes = {-1, 0, 0, 1, 1, 0, 0, 1, 0, -1, 0, 1, 0, 1, 0, 1, 0, 0, -1, 1, 0, 0, 1, 1};
     std::vector<unsigned> polygons = {4, 0, 4, 6, 2, 4, 1, 3, 7, 5, 4, 0, 1, 5, 4,
                                       4, 2, 6, 7, 3, 4, 0, 2, 3, 1, 4, 4, 5, 7, 6};
-    auto create = [&] { return gdc::ode::createConvex(0, planes.data(), 6, points.data(), 8, polygons.data()); };
+    auto create = [&] { return gdc::ode::createConvexStrict(0, planes.data(), 6, points.data(), 8, polygons.data()); };
+    // dCreateConvex takes such data (its libccd collider uses only the points), so createConvex
+    // does too: the hull of the points, with a dMessage.
+    auto takeHull = [&] {
+        dGeomID geom = gdc::ode::createConvex(0, planes.data(), 6, points.data(), 8, polygons.data());
+        REQUIRE(gdc::ode::polytopeOf(geom));
+        std::vector<Vec3> cloud;
+        for (int i = 0; i < 8; ++i) cloud.emplace_back(points[3 * i], points[3 * i + 1], points[3 * i + 2]);
+        CHECK(gdc::ode::polytopeOf(geom)->volume() == Approx(Polytope::fromPoints(cloud).volume()));
+        dGeomDestroy(geom);
+    };
     dGeomID good = create();
     REQUIRE(good);
     dGeomDestroy(good);
     SECTION("a polygon wound clockwise") {
         std::swap(polygons[17], polygons[19]);  // the +y polygon 2,6,7,3 → 2,3,7,6
         CHECK_THROWS_WITH(create(), Catch::Contains("plane 3") && Catch::Contains("clockwise"));
+        takeHull();
     }
     SECTION("a dented point: not convex") {
         points[3 * 7 + 0] = points[3 * 7 + 1] = points[3 * 7 + 2] = 0.5;  // the +x+y+z corner pushed in
         CHECK_THROWS_AS(create(), InvalidInput);
+        takeHull();
     }
 }
 

@@ -1,0 +1,36 @@
+// gdc::validate: every Settings field against the bounds settings.hpp states for it.
+#include <gdcontact/settings.hpp>
+#include <gdcontact/manifold.hpp>
+#include <gdcontact/types.hpp>
+
+#include <sstream>
+#include <string>
+
+namespace gdc {
+namespace {
+
+template <class T>
+void requireWithin(const char* field, T value, T lower, T upper, const char* unit) {
+    if (value >= lower && value <= upper) return;  // false for NaN
+    std::ostringstream message;
+    message << "Settings::" << field << " is " << value << "; it must be in [" << lower << ", " << upper << "]"
+            << unit << " (see its comment in gdcontact/settings.hpp)";
+    throw InvalidInput(message.str());
+}
+
+}  // namespace
+
+void validate(const Settings& settings) {
+    requireWithin("rayCastTolerance", settings.rayCastTolerance, 1e-15, 1e-3, " (relative to the pair's size)");
+    requireWithin("maxRayCastIterations", settings.maxRayCastIterations, 1, 10000, " iterations");
+    requireWithin("angularTolerance", settings.angularTolerance, 0.0, 0.5, " rad");
+    requireWithin("margin", settings.margin, 0.0, 1.0, " scene length units");
+    requireWithin("maxContacts", settings.maxContacts, 1, static_cast<int>(kMaxManifoldPoints), " contacts");
+    requireWithin("bruteForceSupportLimit", settings.bruteForceSupportLimit, 0, 65536, " vertices");
+    requireWithin("coplanarTolerance", settings.coplanarTolerance, 0.0, 0.1, " rad");
+    const int method = static_cast<int>(settings.normalMethod);
+    requireWithin("normalMethod", method, static_cast<int>(NormalMethod::GrowthDistance),
+                  static_cast<int>(NormalMethod::SeparatingAxis), " (a NormalMethod value)");
+}
+
+}  // namespace gdc

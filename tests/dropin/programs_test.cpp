@@ -1,0 +1,82 @@
+// The drop-in programs, each run to its end in a child process (so that an abort — ODE's dError,
+// an uncaught exception — fails the test instead of ending the suite), with every contact ODE got
+// audited in the program's near callback. Each program prints one "dropin:" line on stderr.
+#include "child_process.hpp"  // tests/ode
+#include "demo_support.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <csignal>
+#include <sstream>
+#include <string>
+
+int runBoxStack();
+int runConvexPile();
+int runTerrain();
+int runInstallOnly();
+
+namespace {
+
+struct Outcome {
+    int status = -2;
+    std::string text;
+    long objects = -1, contacts = -1, invalid = -1, fallen = -1, steps = -1;
+};
+
+Outcome run(int (*program)()) {
+    Outcome outcome;
+    std::tie(outcome.status, outcome.text) = gdc::ode::test::runInChild([program] {
+        // As in a program's main: an exception nothing catches ends the process (std::terminate).
+        std::signal(SIGABRT, SIG_DFL);  // not the test framework's handler: just end
+        [program]() noexcept { std::_Exit(program()); }();
+    });
+    const auto at = outcome.text.find("dropin: ");
+    if (at != std::string::npos) {
+        std::istringstream line(outcome.text.substr(at + 8));
+        std::string word;
+        line >> word >> outcome.objects >> word >> outcome.contacts >> word >> outcome.invalid >> word >>
+            outcome.fallen >> word >> outcome.steps;
+    }
+    return outcome;
+}
+
+void checkRanClean(const Outcome& outcome, long steps) {
+    INFO(outcome.text);
+    REQUIRE(outcome.status == 0);
+    CHECK(outcome.steps == steps);  // ran to its end
+    CHECK(outcome.contacts > 100);
+    CHECK(outcome.invalid == 0);
+    CHECK(outcome.fallen == 0);
+    CHECK(outcome.text.find("ODE INTERNAL ERROR") == std::string::npos);
+    CHECK(outcome.text.find("ODE Error") == std::string::npos);
+}
+
+}  // namespace
+
+TEST_CASE("box stack with scripted keys dropping boxes and convexes (rounded, inward, shuffled data)",
+          "[dropin]") {
+    const Outcome outcome = run(&runBoxStack);
+    checkRanClean(outcome, 2000);
+    CHECK(outcome.objects == 28);
+    // Each createConvex of inconsistent data says so once: 6 icosahedra ('v'), 5 prisms ('p').
+    CHECK(dropin::count(outcome.text, "convex hull of the") == 11);
+    CHECK(dropin::count(outcome.text, "(20 faces)") == 6);  // the icosahedra
+    CHECK(dropin::count(outcome.text, "plain dCreateConvex") == 0);
+}
+
+TEST_CASE("a convex pile from rounded data stands inside its walls", "[dropin]") {
+    const Outcome outcome = run(&runConvexPile);
+    checkRanClean(outcome, 600);
+    CHECK(dropin::count(outcome.text, "convex hull of the") == 15);  // 8 inward icosahedra, 7 prisms
+}
+
+TEST_CASE("convexes and boxes on a trimesh and a heightfield", "[dropin]") {
+    const Outcome outcome = run(&runTerrain);
+    checkRanClean(outcome, 600);
+}
+
+TEST_CASE("a program that only adds install(): plain dCreateConvex geoms work, with one message", "[dropin]") {
+    const Outcome outcome = run(&runInstallOnly);
+    checkRanClean(outcome, 500);
+    CHECK(dropin::count(outcome.text, "plain dCreateConvex") == 1);
+}
