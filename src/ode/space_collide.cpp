@@ -1,0 +1,331 @@
+// gdc::ode::spaceCollide / setThreadCount: a whole step's collision in one call. ODE's broad phase
+// (dSpaceCollide, nested spaces through dSpaceCollide2) lists the candidate pairs on the calling
+// thread; the pairs gdcontact handles are collided on a small pool of threads, each into its own
+// slot; the other pairs go to dCollide on the calling thread, inside the broad phase; then the
+// handler runs on the calling thread for every touching pair, in the broad phase's order. So the
+// output (and the contact joints a handler makes from it) does not depend on the thread count.
+//
+// Why a std::thread pool and not oneTBB: the work is one flat loop over independent pairs per
+// step, which a pool of a few dozen lines does with an atomic counter; oneTBB would become a
+// dependency of the installed library (its CMake config, pkg-config file and Debian package) for
+// that one loop, and its own synchronisation is not visible to ThreadSanitizer unless TBB itself is
+// instrumented. The pool's threads sleep on a condition variable between calls.
+#include <gdcontact/ode.hpp>
+
+#include "state.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <condition_variable>
+#include <cstddef>
+#include <cstdint>
+#include <exception>
+#include <mutex>
+#include <new>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace gdc::ode {
+namespace {
+
+constexpr int kMaxThreads = 256;
+
+// 0: one per hardware thread.
+std::atomic<int> requestedThreads{0};
+
+int effectiveThreadCount() {
+    const int requested = requestedThreads.load(std::memory_order_relaxed);
+    if (requested > 0) return requested;
+    const unsigned hardware = std::thread::hardware_concurrency();
+    return hardware == 0 ? 1 : static_cast<int>(std::min<unsigned>(hardware, kMaxThreads));
+}
+
+// One parallel loop: body(context, begin, end) over [0, count) in chunks, taken in any order by
+// any participant (each index writes only its own output, so the order of execution is invisible).
+struct Job {
+    void (*body)(void* context, std::size_t begin, std::size_t end) = nullptr;
+    void* context = nullptr;
+    std::size_t count = 0;
+    std::size_t chunk = 1;
+    std::atomic<std::size_t> next{0};
+
+    void work() {
+        for (;;) {
+            const std::size_t begin = next.fetch_add(chunk, std::memory_order_relaxed);
+            if (begin >= count) return;
+            body(context, begin, std::min(count, begin + chunk));
+        }
+    }
+};
+
+// Worker threads that sleep between jobs. run() is called by one thread at a time (the caller
+// holds WorkerPool::use); the calling thread works on the job too.
+class WorkerPool {
+public:
+    std::mutex use;  // held by the thread running a job (spaceCollide try-locks it)
+
+    ~WorkerPool() { resize(0); }
+
+    // Runs `job` on the calling thread and `workers` pool threads; returns when every index is done.
+    void run(Job& job, int workers) {
+        if (static_cast<int>(threads_.size()) != workers) resize(workers);
+        if (workers == 0) {
+            job.work();
+            return;
+        }
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            job_ = &job;
+            pending_ = workers;
+            ++generation_;
+        }
+        wake_.notify_all();
+        job.work();
+        std::unique_lock<std::mutex> lock(mutex_);
+        finished_.wait(lock, [&] { return pending_ == 0; });
+        job_ = nullptr;
+    }
+
+private:
+    void resize(int workers) {
+        if (!threads_.empty()) {
+            {
+                std::lock_guard<std::mutex> lock(mutex_);
+                stopping_ = true;
+            }
+            wake_.notify_all();
+            for (std::thread& thread : threads_) thread.join();
+            threads_.clear();
+            stopping_ = false;
+        }
+        threads_.reserve(static_cast<std::size_t>(workers));
+        // A new thread must not take the generation current when it starts: the next job may have
+        // been posted by then. Only run() changes it, on this thread, so it is read here.
+        for (int i = 0; i < workers; ++i) threads_.emplace_back([this, seen = generation_] { loop(seen); });
+    }
+
+    void loop(std::uint64_t seen) {
+        for (;;) {
+            Job* job;
+            {
+                std::unique_lock<std::mutex> lock(mutex_);
+                wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
+                if (stopping_) return;
+                seen = generation_;
+                job = job_;
+            }
+            job->work();
+            bool last;
+            {
+                std::lock_guard<std::mutex> lock(mutex_);
+                last = --pending_ == 0;
+            }
+            if (last) finished_.notify_one();
+        }
+    }
+
+    std::mutex mutex_;
+    std::condition_variable wake_;
+    std::condition_variable finished_;
+    std::vector<std::thread> threads_;
+    std::uint64_t generation_ = 0;
+    Job* job_ = nullptr;
+    int pending_ = 0;
+    bool stopping_ = false;
+};
+
+WorkerPool& workerPool() {
+    static WorkerPool pool;
+    return pool;
+}
+
+// A candidate pair in the broad phase's order. gdcontact's pairs are collided later into slot
+// `index` of the gdcontact buffer; ODE's are collided at once into the ODE buffer at `index`.
+struct Pair {
+    dGeomID o1;
+    dGeomID o2;
+    std::size_t index;
+    int count;
+    bool gdcontact;
+};
+
+// One spaceCollide call's buffers, kept per calling thread so that a step allocates nothing once
+// the scene's size has been seen (a handler calling spaceCollide again gets fresh ones).
+struct Scratch {
+    std::vector<Pair> pairs;
+    std::vector<dContactGeom> gdcontactContacts;  // slotSize per gdcontact pair
+    std::vector<dContactGeom> odeContacts;        // each ODE pair's contacts, packed
+    std::vector<const Pair*> gdcontactList;       // gdcontact's pairs, in order
+    std::vector<int> gdcontactCounts;             // their contact counts
+    std::size_t gdcontactPairs = 0;
+    bool inUse = false;
+};
+
+struct Call {
+    Scratch& scratch;
+    int maxContacts;  // the caller's maxContactsPerPair
+    int slotSize;     // contacts kept per gdcontact pair: min(maxContacts, kMaxManifoldPoints)
+    detail::ThreadCache& cache;
+    std::exception_ptr failure;  // thrown inside ODE's broad phase, rethrown after it
+};
+
+// Box, createConvex convex or plane (not plane–plane): the pairs collide() handles.
+bool isGdcontactGeom(dGeomID geom, int geomClass, detail::ThreadCache& cache) {
+    if (geomClass == dBoxClass || geomClass == dPlaneClass) return true;
+    return geomClass == dConvexClass && detail::borrowedConvex(cache, geom) != nullptr;
+}
+
+void addPair(Call& call, dGeomID o1, dGeomID o2) {
+    const int class1 = dGeomGetClass(o1);
+    const int class2 = dGeomGetClass(o2);
+    Scratch& scratch = call.scratch;
+    if (!(class1 == dPlaneClass && class2 == dPlaneClass) && isGdcontactGeom(o1, class1, call.cache) &&
+        isGdcontactGeom(o2, class2, call.cache)) {
+        // Settles the geoms' world poses here, on the calling thread (dGeomGetPosition recomputes a
+        // stale one), so that the workers only read them. The broad phase has normally done it.
+        if (class1 != dPlaneClass) dGeomGetPosition(o1);
+        if (class2 != dPlaneClass) dGeomGetPosition(o2);
+        scratch.pairs.push_back(Pair{o1, o2, scratch.gdcontactPairs++, 0, true});
+        return;
+    }
+    // ODE's own collider, as a near callback would call it, here and now on the calling thread.
+    std::vector<dContactGeom>& buffer = scratch.odeContacts;
+    const std::size_t offset = buffer.size();
+    buffer.resize(offset + static_cast<std::size_t>(call.maxContacts));
+    const int count = dCollide(o1, o2, call.maxContacts, &buffer[offset], sizeof(dContactGeom));
+    buffer.resize(offset + static_cast<std::size_t>(std::max(count, 0)));
+    scratch.pairs.push_back(Pair{o1, o2, offset, count, false});
+}
+
+// ODE's near callback, with nested spaces handled as ODE's documentation describes.
+void nearCallback(void* data, dGeomID o1, dGeomID o2) {
+    Call& call = *static_cast<Call*>(data);
+    if (call.failure) return;
+    try {
+        if (dGeomIsSpace(o1) || dGeomIsSpace(o2)) {
+            dSpaceCollide2(o1, o2, data, &nearCallback);
+            if (dGeomIsSpace(o1)) dSpaceCollide(reinterpret_cast<dSpaceID>(o1), data, &nearCallback);
+            if (dGeomIsSpace(o2)) dSpaceCollide(reinterpret_cast<dSpaceID>(o2), data, &nearCallback);
+            return;
+        }
+        addPair(call, o1, o2);
+    } catch (...) {  // no exception may cross ODE's C frames
+        call.failure = std::current_exception();
+    }
+}
+
+// The pool's loop body: gdcontact pairs [begin, end) of the gdcontact list into their slots.
+struct NarrowPhase {
+    const std::vector<const Pair*>* pairs;
+    dContactGeom* slots;
+    int slotSize;
+    std::vector<int>* counts;
+};
+
+void collideRange(void* context, std::size_t begin, std::size_t end) {
+    NarrowPhase& phase = *static_cast<NarrowPhase*>(context);
+    for (std::size_t i = begin; i < end; ++i) {
+        const Pair& pair = *(*phase.pairs)[i];
+        // collide() never throws: a failure becomes a dMessage and 0 contacts.
+        (*phase.counts)[i] = collide(pair.o1, pair.o2, phase.slotSize,
+                                     phase.slots + i * static_cast<std::size_t>(phase.slotSize),
+                                     sizeof(dContactGeom));
+    }
+}
+
+// The calling thread's scratch; a fresh one when spaceCollide is re-entered from a handler.
+struct ScratchLease {
+    Scratch* scratch;
+    Scratch* owned = nullptr;
+    ScratchLease() {
+        thread_local Scratch mine;
+        if (mine.inUse) {
+            owned = new Scratch;
+            scratch = owned;
+        } else {
+            scratch = &mine;
+        }
+        scratch->inUse = true;
+        scratch->pairs.clear();
+        scratch->odeContacts.clear();
+        scratch->gdcontactPairs = 0;
+    }
+    ~ScratchLease() {
+        scratch->inUse = false;
+        delete owned;
+    }
+    ScratchLease(const ScratchLease&) = delete;
+    ScratchLease& operator=(const ScratchLease&) = delete;
+};
+
+}  // namespace
+
+void setThreadCount(int threads) {
+    if (threads < 0 || threads > kMaxThreads)
+        throw InvalidInput("gdc::ode::setThreadCount: threads must be in 0..256 (0: one per hardware "
+                           "thread), got " + std::to_string(threads));
+    requestedThreads.store(threads, std::memory_order_relaxed);
+}
+
+void spaceCollide(dSpaceID space, int maxContactsPerPair, void* data, ContactHandler handler) {
+    if (!space) throw InvalidInput("gdc::ode::spaceCollide: null space");
+    if (!dGeomIsSpace(reinterpret_cast<dGeomID>(space)))
+        throw InvalidInput("gdc::ode::spaceCollide: the first argument is a geom, not a space");
+    if (!handler) throw InvalidInput("gdc::ode::spaceCollide: null handler");
+    if (maxContactsPerPair < 1 || maxContactsPerPair > 0xffff)
+        throw InvalidInput("gdc::ode::spaceCollide: maxContactsPerPair must be in 1..65535, got " +
+                           std::to_string(maxContactsPerPair));
+
+    ScratchLease lease;
+    Scratch& scratch = *lease.scratch;
+    const int slotSize = std::min(maxContactsPerPair, kMaxManifoldPoints);
+    Call call{scratch, maxContactsPerPair, slotSize, detail::threadCache(), nullptr};
+
+    // 1. The broad phase (serial, ODE's): ODE pairs collided at once, gdcontact pairs listed.
+    dSpaceCollide(space, &call, &nearCallback);
+    if (call.failure) std::rethrow_exception(call.failure);
+
+    // 2. gdcontact's pairs on the pool, each into its own slot.
+    std::vector<const Pair*>& gdcontactPairs = scratch.gdcontactList;
+    gdcontactPairs.clear();
+    for (const Pair& pair : scratch.pairs)
+        if (pair.gdcontact) gdcontactPairs.push_back(&pair);
+    scratch.gdcontactContacts.resize(gdcontactPairs.size() * static_cast<std::size_t>(slotSize));
+    std::vector<int>& counts = scratch.gdcontactCounts;
+    counts.assign(gdcontactPairs.size(), 0);
+    NarrowPhase phase{&gdcontactPairs, scratch.gdcontactContacts.data(), slotSize, &counts};
+    Job job;
+    job.body = &collideRange;
+    job.context = &phase;
+    job.count = gdcontactPairs.size();
+    const int threads = effectiveThreadCount();
+    // Chunks small enough to balance uneven pairs, large enough that the counter is not contended.
+    job.chunk = std::max<std::size_t>(1, std::min<std::size_t>(32, job.count / (8 * threads) + 1));
+    WorkerPool& pool = workerPool();
+    std::unique_lock<std::mutex> poolLock(pool.use, std::defer_lock);
+    if (threads > 1 && job.count > 1 && poolLock.try_lock()) {
+        pool.run(job, threads - 1);
+        poolLock.unlock();
+    } else {
+        job.work();  // serial: one thread asked for, or another call is using the pool
+    }
+
+    // 3. The handler, on the calling thread, in the broad phase's order.
+    std::size_t gdcontactIndex = 0;
+    for (const Pair& pair : scratch.pairs) {
+        dContactGeom* contacts;
+        int count;
+        if (pair.gdcontact) {
+            count = counts[gdcontactIndex];
+            contacts = scratch.gdcontactContacts.data() + gdcontactIndex * static_cast<std::size_t>(slotSize);
+            ++gdcontactIndex;
+        } else {
+            count = pair.count;
+            contacts = count > 0 ? scratch.odeContacts.data() + pair.index : nullptr;
+        }
+        if (count > 0) handler(data, pair.o1, pair.o2, contacts, count);
+    }
+}
+
+}  // namespace gdc::ode
