@@ -1,9 +1,16 @@
 // gdc::ode::spaceCollide / setThreadCount: a whole step's collision in one call. ODE's broad phase
 // (dSpaceCollide, nested spaces through dSpaceCollide2) lists the candidate pairs on the calling
 // thread; the pairs gdcontact handles are collided on a small pool of threads, each into its own
-// slot; the other pairs go to dCollide on the calling thread, inside the broad phase; then the
-// handler runs on the calling thread for every touching pair, in the broad phase's order. So the
-// output (and the contact joints a handler makes from it) does not depend on the thread count.
+// slot, as soon as the broad phase lists them (the pool works while the broad phase still runs);
+// the other pairs go to dCollide on the calling thread, inside the broad phase; then the handler
+// runs on the calling thread for every touching pair, in the broad phase's order. So the output
+// (and the contact joints a handler makes from it) does not depend on the thread count.
+//
+// Why the pool may read geoms while the broad phase runs: ODE's spaces (simple, hash) clean every
+// geom of the space tree — world pose and AABB, recursively into nested spaces — before they report
+// the first pair, and afterwards only read the geoms (dSpaceCollide2 on a nested space re-cleans
+// nothing that is clean). The pool reads only gdcontact pairs' geoms (pose, class, box lengths, the
+// convex registry), ODE's colliders on the calling thread only read them too.
 //
 // Why a std::thread pool and not oneTBB: the work is one flat loop over independent pairs per
 // step, which a pool of a few dozen lines does with an atomic counter; oneTBB would become a
@@ -20,6 +27,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <exception>
+#include <memory>
 #include <mutex>
 #include <new>
 #include <string>
@@ -41,20 +49,32 @@ int effectiveThreadCount() {
     return hardware == 0 ? 1 : static_cast<int>(std::min<unsigned>(hardware, kMaxThreads));
 }
 
-// One parallel loop: body(context, begin, end) over [0, count) in chunks, taken in any order by
-// any participant (each index writes only its own output, so the order of execution is invisible).
+// One parallel loop over indices that a producer publishes while the loop runs: body(context,
+// begin, end) in chunks, taken in any order by any participant (each index writes only its own
+// output, so the order of execution is invisible). The producer stores `available` after each
+// index it makes ready and sets `closed` after the last; a participant ahead of it waits.
 struct Job {
     void (*body)(void* context, std::size_t begin, std::size_t end) = nullptr;
     void* context = nullptr;
-    std::size_t count = 0;
     std::size_t chunk = 1;
     std::atomic<std::size_t> next{0};
+    std::atomic<std::size_t> available{0};
+    std::atomic<bool> closed{false};
 
     void work() {
         for (;;) {
             const std::size_t begin = next.fetch_add(chunk, std::memory_order_relaxed);
-            if (begin >= count) return;
-            body(context, begin, std::min(count, begin + chunk));
+            std::size_t end = begin + chunk;
+            for (int spins = 0;; ++spins) {
+                if (available.load(std::memory_order_acquire) >= end) break;
+                if (closed.load(std::memory_order_acquire)) {  // `available` is final now
+                    end = std::min(end, available.load(std::memory_order_acquire));
+                    break;
+                }
+                if (spins >= 64) std::this_thread::yield();  // the broad phase is behind
+            }
+            if (begin >= end) return;
+            body(context, begin, end);
         }
     }
 };
@@ -67,13 +87,10 @@ public:
 
     ~WorkerPool() { resize(0); }
 
-    // Runs `job` on the calling thread and `workers` pool threads; returns when every index is done.
-    void run(Job& job, int workers) {
+    // Sets `workers` pool threads (≥ 1) working on `job`; finish() waits for them. The caller
+    // publishes the job's indices meanwhile, closes it, and works on it too.
+    void start(Job& job, int workers) {
         if (static_cast<int>(threads_.size()) != workers) resize(workers);
-        if (workers == 0) {
-            job.work();
-            return;
-        }
         {
             std::lock_guard<std::mutex> lock(mutex_);
             job_ = &job;
@@ -81,7 +98,8 @@ public:
             ++generation_;
         }
         wake_.notify_all();
-        job.work();
+    }
+    void finish() {
         std::unique_lock<std::mutex> lock(mutex_);
         finished_.wait(lock, [&] { return pending_ == 0; });
         job_ = nullptr;
@@ -140,8 +158,8 @@ WorkerPool& workerPool() {
     return pool;
 }
 
-// A candidate pair in the broad phase's order. gdcontact's pairs are collided later into slot
-// `index` of the gdcontact buffer; ODE's are collided at once into the ODE buffer at `index`.
+// A candidate pair in the broad phase's order: a gdcontact pair by its index in the slot store,
+// an ODE pair by its contacts' offset in the ODE buffer (collided at once, `count` contacts).
 struct Pair {
     dGeomID o1;
     dGeomID o2;
@@ -150,16 +168,52 @@ struct Pair {
     bool gdcontact;
 };
 
+// gdcontact's pairs and their output slots, written by the broad phase while the pool reads the
+// ones published: blocks that never move, block k holding kFirstBlock << k pairs.
+constexpr std::size_t kFirstBlock = 1024;
+constexpr int kBlocks = 40;  // kFirstBlock · (2^40 − 1) pairs: more than memory holds
+
+struct Slot {
+    dGeomID o1;
+    dGeomID o2;
+    int count;
+};
+
+struct SlotBlock {
+    std::unique_ptr<Slot[]> slots;
+    std::unique_ptr<dContactGeom[]> contacts;  // slotSize per pair
+    int slotSize = 0;
+};
+
+inline int blockOf(std::size_t index, std::size_t& offset) {
+    const std::size_t scaled = index / kFirstBlock + 1;  // block k holds scaled in [2^k, 2^(k+1))
+    const int block = 63 - __builtin_clzll(static_cast<unsigned long long>(scaled));
+    offset = index - kFirstBlock * ((std::size_t{1} << block) - 1);
+    return block;
+}
+
 // One spaceCollide call's buffers, kept per calling thread so that a step allocates nothing once
 // the scene's size has been seen (a handler calling spaceCollide again gets fresh ones).
 struct Scratch {
     std::vector<Pair> pairs;
-    std::vector<dContactGeom> gdcontactContacts;  // slotSize per gdcontact pair
-    std::vector<dContactGeom> odeContacts;        // each ODE pair's contacts, packed
-    std::vector<const Pair*> gdcontactList;       // gdcontact's pairs, in order
-    std::vector<int> gdcontactCounts;             // their contact counts
+    SlotBlock blocks[kBlocks];
+    std::vector<dContactGeom> odeContacts;  // each ODE pair's contacts, packed
     std::size_t gdcontactPairs = 0;
     bool inUse = false;
+
+    // The slot of gdcontact pair `index`, its block made ready for `slotSize` contacts a pair.
+    Slot& slotFor(std::size_t index, int slotSize, dContactGeom*& contacts) {
+        std::size_t offset;
+        SlotBlock& block = blocks[blockOf(index, offset)];
+        const std::size_t size = kFirstBlock << (&block - blocks);
+        if (!block.slots) block.slots.reset(new Slot[size]);
+        if (block.slotSize != slotSize) {
+            block.contacts.reset(new dContactGeom[size * static_cast<std::size_t>(slotSize)]);
+            block.slotSize = slotSize;
+        }
+        contacts = block.contacts.get() + offset * static_cast<std::size_t>(slotSize);
+        return block.slots[offset];
+    }
 };
 
 struct Call {
@@ -167,6 +221,7 @@ struct Call {
     int maxContacts;  // the caller's maxContactsPerPair
     int slotSize;     // contacts kept per gdcontact pair: min(maxContacts, kMaxManifoldPoints)
     detail::ThreadCache& cache;
+    Job& job;  // publishes each gdcontact pair to the pool as soon as it is listed
     std::exception_ptr failure;  // thrown inside ODE's broad phase, rethrown after it
 };
 
@@ -186,7 +241,15 @@ void addPair(Call& call, dGeomID o1, dGeomID o2) {
         // stale one), so that the workers only read them. The broad phase has normally done it.
         if (class1 != dPlaneClass) dGeomGetPosition(o1);
         if (class2 != dPlaneClass) dGeomGetPosition(o2);
-        scratch.pairs.push_back(Pair{o1, o2, scratch.gdcontactPairs++, 0, true});
+        const std::size_t index = scratch.gdcontactPairs;
+        scratch.pairs.push_back(Pair{o1, o2, index, 0, true});  // may throw: before publishing
+        dContactGeom* contacts;
+        Slot& slot = scratch.slotFor(index, call.slotSize, contacts);
+        slot.o1 = o1;
+        slot.o2 = o2;
+        slot.count = 0;
+        scratch.gdcontactPairs = index + 1;
+        call.job.available.store(index + 1, std::memory_order_release);
         return;
     }
     // ODE's own collider, as a near callback would call it, here and now on the calling thread.
@@ -215,22 +278,22 @@ void nearCallback(void* data, dGeomID o1, dGeomID o2) {
     }
 }
 
-// The pool's loop body: gdcontact pairs [begin, end) of the gdcontact list into their slots.
+// The pool's loop body: gdcontact pairs [begin, end) into their slots.
 struct NarrowPhase {
-    const std::vector<const Pair*>* pairs;
-    dContactGeom* slots;
+    Scratch* scratch;
     int slotSize;
-    std::vector<int>* counts;
 };
 
 void collideRange(void* context, std::size_t begin, std::size_t end) {
     NarrowPhase& phase = *static_cast<NarrowPhase*>(context);
     for (std::size_t i = begin; i < end; ++i) {
-        const Pair& pair = *(*phase.pairs)[i];
+        std::size_t offset;
+        SlotBlock& block = phase.scratch->blocks[blockOf(i, offset)];
+        Slot& slot = block.slots[offset];
         // collide() never throws: a failure becomes a dMessage and 0 contacts.
-        (*phase.counts)[i] = collide(pair.o1, pair.o2, phase.slotSize,
-                                     phase.slots + i * static_cast<std::size_t>(phase.slotSize),
-                                     sizeof(dContactGeom));
+        slot.count = collide(slot.o1, slot.o2, phase.slotSize,
+                             block.contacts.get() + offset * static_cast<std::size_t>(phase.slotSize),
+                             sizeof(dContactGeom));
     }
 }
 
@@ -280,46 +343,40 @@ void spaceCollide(dSpaceID space, int maxContactsPerPair, void* data, ContactHan
     ScratchLease lease;
     Scratch& scratch = *lease.scratch;
     const int slotSize = std::min(maxContactsPerPair, kMaxManifoldPoints);
-    Call call{scratch, maxContactsPerPair, slotSize, detail::threadCache(), nullptr};
-
-    // 1. The broad phase (serial, ODE's): ODE pairs collided at once, gdcontact pairs listed.
-    dSpaceCollide(space, &call, &nearCallback);
-    if (call.failure) std::rethrow_exception(call.failure);
-
-    // 2. gdcontact's pairs on the pool, each into its own slot.
-    std::vector<const Pair*>& gdcontactPairs = scratch.gdcontactList;
-    gdcontactPairs.clear();
-    for (const Pair& pair : scratch.pairs)
-        if (pair.gdcontact) gdcontactPairs.push_back(&pair);
-    scratch.gdcontactContacts.resize(gdcontactPairs.size() * static_cast<std::size_t>(slotSize));
-    std::vector<int>& counts = scratch.gdcontactCounts;
-    counts.assign(gdcontactPairs.size(), 0);
-    NarrowPhase phase{&gdcontactPairs, scratch.gdcontactContacts.data(), slotSize, &counts};
+    NarrowPhase phase{&scratch, slotSize};
     Job job;
     job.body = &collideRange;
     job.context = &phase;
-    job.count = gdcontactPairs.size();
+    job.chunk = 8;  // a few microseconds of work: balances uneven pairs, keeps the counter quiet
+    Call call{scratch, maxContactsPerPair, slotSize, detail::threadCache(), job, nullptr};
+
+    // 1. The broad phase (ODE's, serial, on this thread): ODE's pairs collided at once; gdcontact's
+    //    listed, and collided on the pool threads as soon as listed (2.).
     const int threads = effectiveThreadCount();
-    // Chunks small enough to balance uneven pairs, large enough that the counter is not contended.
-    job.chunk = std::max<std::size_t>(1, std::min<std::size_t>(32, job.count / (8 * threads) + 1));
     WorkerPool& pool = workerPool();
     std::unique_lock<std::mutex> poolLock(pool.use, std::defer_lock);
-    if (threads > 1 && job.count > 1 && poolLock.try_lock()) {
-        pool.run(job, threads - 1);
+    const bool parallel = threads > 1 && poolLock.try_lock();  // else serial: 1 thread, or pool busy
+    if (parallel) pool.start(job, threads - 1);
+    dSpaceCollide(space, &call, &nearCallback);
+    job.closed.store(true, std::memory_order_release);
+
+    // 2. The rest of gdcontact's pairs, on this thread too; then every pair is done.
+    job.work();
+    if (parallel) {
+        pool.finish();
         poolLock.unlock();
-    } else {
-        job.work();  // serial: one thread asked for, or another call is using the pool
     }
+    if (call.failure) std::rethrow_exception(call.failure);
 
     // 3. The handler, on the calling thread, in the broad phase's order.
-    std::size_t gdcontactIndex = 0;
     for (const Pair& pair : scratch.pairs) {
         dContactGeom* contacts;
         int count;
         if (pair.gdcontact) {
-            count = counts[gdcontactIndex];
-            contacts = scratch.gdcontactContacts.data() + gdcontactIndex * static_cast<std::size_t>(slotSize);
-            ++gdcontactIndex;
+            std::size_t offset;
+            SlotBlock& block = scratch.blocks[blockOf(pair.index, offset)];
+            count = block.slots[offset].count;
+            contacts = block.contacts.get() + offset * static_cast<std::size_t>(slotSize);
         } else {
             count = pair.count;
             contacts = count > 0 ? scratch.odeContacts.data() + pair.index : nullptr;
