@@ -158,8 +158,9 @@ WorkerPool& workerPool() {
     return pool;
 }
 
-// A candidate pair in the broad phase's order: a gdcontact pair by its index in the slot store,
-// an ODE pair by its contacts' offset in the ODE buffer (collided at once, `count` contacts).
+// A candidate pair in the broad phase's order: a gdcontact pair collided on the pool by its index in
+// the slot store; a pair collided at once on the calling thread by its contacts' offset in the
+// packed buffer (`count` contacts).
 struct Pair {
     dGeomID o1;
     dGeomID o2;
@@ -197,7 +198,22 @@ inline int blockOf(std::size_t index, std::size_t& offset) {
 struct Scratch {
     std::vector<Pair> pairs;
     SlotBlock blocks[kBlocks];
-    std::vector<dContactGeom> odeContacts;  // each ODE pair's contacts, packed
+    // The contacts of the pairs collided on the calling thread (ODE's; gdcontact's when serial),
+    // one pair after the other. Not a std::vector: room for a pair is made without filling it.
+    struct Packed {
+        std::unique_ptr<dContactGeom[]> data;
+        std::size_t size = 0, capacity = 0;
+        dContactGeom* reserve(std::size_t room) {  // room for `room` more; their address
+            if (size + room > capacity) {
+                const std::size_t grown = std::max(2 * capacity, size + room + 1024);
+                std::unique_ptr<dContactGeom[]> bigger(new dContactGeom[grown]);
+                std::copy(data.get(), data.get() + size, bigger.get());
+                data = std::move(bigger);
+                capacity = grown;
+            }
+            return data.get() + size;
+        }
+    } packed;
     std::size_t gdcontactPairs = 0;
     bool inUse = false;
 
@@ -222,6 +238,7 @@ struct Call {
     int slotSize;     // contacts kept per gdcontact pair: min(maxContacts, kMaxManifoldPoints)
     detail::ThreadCache& cache;
     Job& job;  // publishes each gdcontact pair to the pool as soon as it is listed
+    bool serial;  // no pool: collide each gdcontact pair at once, as a near callback would
     std::exception_ptr failure;  // thrown inside ODE's broad phase, rethrown after it
 };
 
@@ -235,8 +252,9 @@ void addPair(Call& call, dGeomID o1, dGeomID o2) {
     const int class1 = dGeomGetClass(o1);
     const int class2 = dGeomGetClass(o2);
     Scratch& scratch = call.scratch;
-    if (!(class1 == dPlaneClass && class2 == dPlaneClass) && isGdcontactGeom(o1, class1, call.cache) &&
-        isGdcontactGeom(o2, class2, call.cache)) {
+    const bool ours = !(class1 == dPlaneClass && class2 == dPlaneClass) &&
+                      isGdcontactGeom(o1, class1, call.cache) && isGdcontactGeom(o2, class2, call.cache);
+    if (ours && !call.serial) {
         // Settles the geoms' world poses here, on the calling thread (dGeomGetPosition recomputes a
         // stale one), so that the workers only read them. The broad phase has normally done it.
         if (class1 != dPlaneClass) dGeomGetPosition(o1);
@@ -252,13 +270,14 @@ void addPair(Call& call, dGeomID o1, dGeomID o2) {
         call.job.available.store(index + 1, std::memory_order_release);
         return;
     }
-    // ODE's own collider, as a near callback would call it, here and now on the calling thread.
-    std::vector<dContactGeom>& buffer = scratch.odeContacts;
-    const std::size_t offset = buffer.size();
-    buffer.resize(offset + static_cast<std::size_t>(call.maxContacts));
-    const int count = dCollide(o1, o2, call.maxContacts, &buffer[offset], sizeof(dContactGeom));
-    buffer.resize(offset + static_cast<std::size_t>(std::max(count, 0)));
-    scratch.pairs.push_back(Pair{o1, o2, offset, count, false});
+    // ODE's own collider as a near callback would call it (or, when serial, gdcontact's), here and
+    // now on the calling thread, the contacts packed one pair after the other.
+    const int room = ours ? call.slotSize : call.maxContacts;
+    dContactGeom* out = scratch.packed.reserve(static_cast<std::size_t>(room));
+    const int count = ours ? collide(o1, o2, room, out, sizeof(dContactGeom))  // never throws
+                           : dCollide(o1, o2, room, out, sizeof(dContactGeom));
+    scratch.pairs.push_back(Pair{o1, o2, scratch.packed.size, count, false});
+    scratch.packed.size += static_cast<std::size_t>(std::max(count, 0));
 }
 
 // ODE's near callback, with nested spaces handled as ODE's documentation describes.
@@ -311,7 +330,7 @@ struct ScratchLease {
         }
         scratch->inUse = true;
         scratch->pairs.clear();
-        scratch->odeContacts.clear();
+        scratch->packed.size = 0;
         scratch->gdcontactPairs = 0;
     }
     ~ScratchLease() {
@@ -348,21 +367,21 @@ void spaceCollide(dSpaceID space, int maxContactsPerPair, void* data, ContactHan
     job.body = &collideRange;
     job.context = &phase;
     job.chunk = 8;  // a few microseconds of work: balances uneven pairs, keeps the counter quiet
-    Call call{scratch, maxContactsPerPair, slotSize, detail::threadCache(), job, nullptr};
-
-    // 1. The broad phase (ODE's, serial, on this thread): ODE's pairs collided at once; gdcontact's
-    //    listed, and collided on the pool threads as soon as listed (2.).
     const int threads = effectiveThreadCount();
     WorkerPool& pool = workerPool();
     std::unique_lock<std::mutex> poolLock(pool.use, std::defer_lock);
     const bool parallel = threads > 1 && poolLock.try_lock();  // else serial: 1 thread, or pool busy
+    Call call{scratch, maxContactsPerPair, slotSize, detail::threadCache(), job, !parallel, nullptr};
+
+    // 1. The broad phase (ODE's, serial, on this thread): ODE's pairs collided at once; gdcontact's
+    //    listed, and collided on the pool threads as soon as listed (2.) — or at once when serial.
     if (parallel) pool.start(job, threads - 1);
     dSpaceCollide(space, &call, &nearCallback);
     job.closed.store(true, std::memory_order_release);
 
     // 2. The rest of gdcontact's pairs, on this thread too; then every pair is done.
-    job.work();
     if (parallel) {
+        job.work();
         pool.finish();
         poolLock.unlock();
     }
@@ -379,7 +398,7 @@ void spaceCollide(dSpaceID space, int maxContactsPerPair, void* data, ContactHan
             contacts = block.contacts.get() + offset * static_cast<std::size_t>(slotSize);
         } else {
             count = pair.count;
-            contacts = count > 0 ? scratch.odeContacts.data() + pair.index : nullptr;
+            contacts = scratch.packed.data.get() + pair.index;
         }
         if (count > 0) handler(data, pair.o1, pair.o2, contacts, count);
     }
