@@ -349,3 +349,46 @@ TEST_CASE("a handler may call spaceCollide on another space", "[big][threads]") 
     REQUIRE(context.outerPairs == outerReference);
     REQUIRE(context.innerPairs == innerReference);
 }
+
+TEST_CASE("thousands of pairs (several slot blocks) and a changed maxContactsPerPair give dCollide's contacts",
+          "[big][threads]") {
+    Session session;
+    dSpaceID space = dHashSpaceCreate(0);
+    dCreatePlane(space, 0, 0, 1, 0);
+    std::mt19937 random(21);
+    std::uniform_real_distribution<double> angle(-0.05, 0.05);
+    // A 16 × 16 × 3 block of slightly turned unit cubes spaced 0.98 apart: every neighbour overlaps.
+    for (int x = 0; x < 16; ++x)
+        for (int y = 0; y < 16; ++y)
+            for (int z = 0; z < 3; ++z) {
+                dGeomID box = dCreateBox(space, 1, 1, 1);
+                dGeomSetPosition(box, 0.98 * x, 0.98 * y, 0.49 + 0.98 * z);
+                dMatrix3 rotation;
+                dRFromEulerAngles(rotation, angle(random), angle(random), angle(random));
+                dGeomSetRotation(box, rotation);
+            }
+    for (int maxContacts : {16, 3, 8}) {
+        std::vector<Reported> reference;
+        struct Context {
+            std::vector<Reported>* out;
+            int maxContacts;
+        } context{&reference, maxContacts};
+        dSpaceCollide(space, &context, [](void* data, dGeomID o1, dGeomID o2) {
+            auto& c = *static_cast<Context*>(data);
+            dContactGeom contacts[16];
+            const int count = dCollide(o1, o2, c.maxContacts, contacts, sizeof(dContactGeom));
+            if (count > 0) record(*c.out, o1, o2, contacts, count);
+        });
+        INFO(maxContacts << " contacts per pair, " << reference.size() << " touching pairs");
+        REQUIRE(reference.size() > 3000);  // the slot store's first block holds 1024 pairs
+        for (int threads : {1, 2, 4}) {
+            INFO(threads << " threads");
+            gdc::ode::setThreadCount(threads);
+            std::vector<Reported> reported;
+            gdc::ode::spaceCollide(space, maxContacts, &reported, &recordHandler);
+            REQUIRE(reported.size() == reference.size());
+            REQUIRE(reported == reference);
+        }
+    }
+    dSpaceDestroy(space);
+}
