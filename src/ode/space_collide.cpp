@@ -79,30 +79,32 @@ struct Job {
     }
 };
 
-// Worker threads that sleep between jobs. run() is called by one thread at a time (the caller
-// holds WorkerPool::use); the calling thread works on the job too.
+// Worker threads that sleep between jobs. One thread at a time posts a job (it holds
+// WorkerPool::use) and works on it too. A worker joins a job only while it is open: one that wakes
+// after the caller has finished every index (the machine busy with other work) finds it closed and
+// sleeps again, so the caller never waits for a thread that has not yet run.
 class WorkerPool {
 public:
     std::mutex use;  // held by the thread running a job (spaceCollide try-locks it)
 
     ~WorkerPool() { resize(0); }
 
-    // Sets `workers` pool threads (≥ 1) working on `job`; finish() waits for them. The caller
-    // publishes the job's indices meanwhile, closes it, and works on it too.
+    // Sets `workers` pool threads (≥ 1) working on `job`; finish() waits for those that joined.
+    // The caller publishes the job's indices meanwhile, closes it, and works on it too.
     void start(Job& job, int workers) {
         if (static_cast<int>(threads_.size()) != workers) resize(workers);
         {
             std::lock_guard<std::mutex> lock(mutex_);
             job_ = &job;
-            pending_ = workers;
             ++generation_;
         }
         wake_.notify_all();
     }
+    // Call when every index of the job is taken (Job::work has returned on the caller).
     void finish() {
         std::unique_lock<std::mutex> lock(mutex_);
-        finished_.wait(lock, [&] { return pending_ == 0; });
-        job_ = nullptr;
+        job_ = nullptr;  // no worker joins from now on
+        finished_.wait(lock, [&] { return active_ == 0; });
     }
 
 private:
@@ -119,7 +121,7 @@ private:
         }
         threads_.reserve(static_cast<std::size_t>(workers));
         // A new thread must not take the generation current when it starts: the next job may have
-        // been posted by then. Only run() changes it, on this thread, so it is read here.
+        // been posted by then. Only start() changes it, on this thread, so it is read here.
         for (int i = 0; i < workers; ++i) threads_.emplace_back([this, seen = generation_] { loop(seen); });
     }
 
@@ -132,12 +134,14 @@ private:
                 if (stopping_) return;
                 seen = generation_;
                 job = job_;
+                if (!job) continue;  // woke too late: the caller has done it all
+                ++active_;
             }
             job->work();
             bool last;
             {
                 std::lock_guard<std::mutex> lock(mutex_);
-                last = --pending_ == 0;
+                last = --active_ == 0;
             }
             if (last) finished_.notify_one();
         }
@@ -148,8 +152,8 @@ private:
     std::condition_variable finished_;
     std::vector<std::thread> threads_;
     std::uint64_t generation_ = 0;
-    Job* job_ = nullptr;
-    int pending_ = 0;
+    Job* job_ = nullptr;  // the open job; nullptr once the caller has finished it
+    int active_ = 0;      // workers inside job_->work()
     bool stopping_ = false;
 };
 
