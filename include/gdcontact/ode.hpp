@@ -80,3 +80,33 @@ GDCONTACT_API Pose poseOf(dGeomID geom);
 GDCONTACT_API std::size_t liveConvexCount();
 
 }  // namespace gdc::ode
+
+// ---- Whole-step collision for big worlds (src/ode/space_collide.cpp) ----------------------------
+namespace gdc::ode {
+
+/// Receives one touching pair's contacts from spaceCollide: `count` ≥ 1 contacts at `contacts`
+/// (stride sizeof(dContactGeom); valid only during the call; the handler may modify them).
+using ContactHandler = void (*)(void* data, dGeomID o1, dGeomID o2, dContactGeom* contacts, int count);
+
+/// One call per step in place of dSpaceCollide + near callback + dCollide. ODE's broad phase
+/// (dSpaceCollide, nested spaces through dSpaceCollide2 as ODE's documentation describes) lists
+/// the candidate pairs. gdcontact's pairs (box, createConvex convex and plane geoms, as collide()
+/// handles them, with the installed settings) are collided on the threads setThreadCount chose;
+/// every other pair goes to dCollide on the calling thread. Then `handler(data, o1, o2, contacts,
+/// count)` runs on the calling thread for each pair with at least one contact, in the broad phase's
+/// order, so its output never depends on the thread count. contacts[k] are what
+/// dCollide(o1, o2, maxContactsPerPair, contacts, sizeof(dContactGeom)) gives after install()
+/// (gdcontact's pairs return at most min(maxContactsPerPair, Settings::maxContacts) contacts).
+/// Throws InvalidInput for a null or non-space `space`, a null handler, or maxContactsPerPair
+/// outside 1..65535; an exception from the handler propagates (the remaining pairs are dropped).
+/// The geoms may not be moved or destroyed while it runs (the handler may create joints). Calls on
+/// several threads at once (on different spaces) are allowed: one of them uses the pool, the
+/// others run serially on their own thread, with the same results.
+GDCONTACT_API void spaceCollide(dSpaceID space, int maxContactsPerPair, void* data, ContactHandler handler);
+
+/// Threads spaceCollide uses for gdcontact's pairs: 0 (the default) one per hardware thread;
+/// 1 serial, on the calling thread; n: the calling thread and n − 1 pool threads. Throws
+/// InvalidInput outside 0..256. Takes effect at the next spaceCollide call.
+GDCONTACT_API void setThreadCount(int threads);
+
+}  // namespace gdc::ode
