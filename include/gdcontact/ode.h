@@ -102,9 +102,26 @@ GDCONTACT_C_API dGeomID gdcCreateConvexStrict(dSpaceID space, const dReal* plane
                                               const dReal* points, unsigned pointCount,
                                               const unsigned* polygons) GDCONTACT_C_NOEXCEPT;
 
-/* This thread's last error message, "" if none. gdcInstall and gdcCreateConvex* set it when they
- * fail and clear it when they succeed. The string stays valid until this thread's next call of
- * one of those functions. Never NULL. */
+/* Receives one touching pair's contacts from gdcSpaceCollide: `count` >= 1 contacts at `contacts`
+ * (consecutive dContactGeoms, valid during the call), as dCollide(o1, o2, ...) would give them. */
+typedef void (*gdcContactHandler)(void* data, dGeomID o1, dGeomID o2, dContactGeom* contacts, int count);
+
+/* gdc::ode::spaceCollide: one call per step in place of dSpaceCollide + near callback + dCollide.
+ * ODE's broad phase finds the pairs (nested spaces included); gdcontact's pairs are collided on the
+ * threads of gdcSetThreadCount, the others by ODE's own colliders; then `handler` runs on the
+ * calling thread for each touching pair, in an order that does not depend on the thread count.
+ * At most maxContactsPerPair (1..65535) contacts a pair. Returns GDC_OK or an error code
+ * (GDC_ERROR_INVALID_ARGUMENT: a NULL or non-space `space`, a NULL handler, a count out of range). */
+GDCONTACT_C_API int gdcSpaceCollide(dSpaceID space, int maxContactsPerPair, void* data,
+                                    gdcContactHandler handler) GDCONTACT_C_NOEXCEPT;
+
+/* gdc::ode::setThreadCount: threads gdcSpaceCollide uses, 0 (default) one per hardware thread,
+ * 1 serial on the calling thread, at most 256. Returns GDC_OK or GDC_ERROR_INVALID_ARGUMENT. */
+GDCONTACT_C_API int gdcSetThreadCount(int threads) GDCONTACT_C_NOEXCEPT;
+
+/* This thread's last error message, "" if none. gdcInstall, gdcCreateConvex*, gdcSpaceCollide and
+ * gdcSetThreadCount set it when they fail and clear it when they succeed. The string stays valid
+ * until this thread's next call of one of those functions. Never NULL. */
 GDCONTACT_C_API const char* gdcLastError(void) GDCONTACT_C_NOEXCEPT;
 
 #ifdef __cplusplus

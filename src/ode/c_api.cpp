@@ -153,6 +153,14 @@ dGeomID gdcCreateConvexStrict(dSpaceID space, const dReal* planes, unsigned plan
     return code == GDC_OK ? geom : nullptr;
 }
 
+int gdcSpaceCollide(dSpaceID space, int maxContactsPerPair, void* data, gdcContactHandler handler) noexcept {
+    return guarded([&] { gdc::ode::spaceCollide(space, maxContactsPerPair, data, handler); });
+}
+
+int gdcSetThreadCount(int threads) noexcept {
+    return guarded([&] { gdc::ode::setThreadCount(threads); });
+}
+
 const char* gdcLastError(void) noexcept { return lastError; }
 
 }  // extern "C"

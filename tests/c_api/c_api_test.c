@@ -115,6 +115,46 @@ static void checkContacts(dGeomID lower, dGeomID upper, int viaDCollide) {
     CHECK(n == 0);
 }
 
+/* gdcSpaceCollide: the lower and upper cubes of checkContacts' pose as its only touching pair. */
+struct SpaceCollideRecord {
+    int pairs;
+    int contacts;
+    int validNormals;
+};
+
+static void recordPair(void* data, dGeomID o1, dGeomID o2, dContactGeom* contacts, int count) {
+    struct SpaceCollideRecord* record = (struct SpaceCollideRecord*)data;
+    int i;
+    (void)o1, (void)o2;
+    ++record->pairs;
+    record->contacts += count;
+    for (i = 0; i < count; ++i)
+        record->validNormals += fabs(contacts[i].normal[0] * contacts[i].normal[0] + contacts[i].normal[1] *
+                                     contacts[i].normal[1] + contacts[i].normal[2] * contacts[i].normal[2] - 1.0) < 1e-9;
+}
+
+static void checkSpaceCollide(void) {
+    dSpaceID space = dSimpleSpaceCreate(0);
+    dGeomID lower = gdcCreateConvexFromPoints(space, cubePoints, 8);
+    dGeomID upper = dCreateBox(space, 1, 1, 1);
+    struct SpaceCollideRecord record = {0, 0, 0};
+    int threads;
+    dGeomSetPosition(lower, 0, 0, 0);
+    dGeomSetPosition(upper, 0, 0, 0.99);
+    for (threads = 1; threads <= 2; ++threads) {
+        CHECK(gdcSetThreadCount(threads) == GDC_OK);
+        record.pairs = record.contacts = record.validNormals = 0;
+        CHECK(gdcSpaceCollide(space, 8, &record, recordPair) == GDC_OK);
+        CHECK(record.pairs == 1 && record.contacts == 4 && record.validNormals == 4);
+    }
+    CHECK(gdcSetThreadCount(-1) == GDC_ERROR_INVALID_ARGUMENT);
+    CHECK(strlen(gdcLastError()) > 0);
+    CHECK(gdcSpaceCollide(space, 8, &record, NULL) == GDC_ERROR_INVALID_ARGUMENT);
+    CHECK(gdcSpaceCollide(space, 0, &record, recordPair) == GDC_ERROR_INVALID_ARGUMENT);
+    CHECK(gdcSetThreadCount(0) == GDC_OK);
+    dSpaceDestroy(space);
+}
+
 int main(void) {
     dSpaceID space;
     dGeomID fromPoints, fromPlanes, box;
@@ -152,6 +192,7 @@ int main(void) {
         }
         CHECK(gdcInstall(NULL) == GDC_OK);
     }
+    checkSpaceCollide();
     dSpaceDestroy(space); /* destroys the geoms; gdcontact releases their hulls */
     dCloseODE();
 
