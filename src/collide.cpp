@@ -128,19 +128,6 @@ bool preferNearbyFaceNormal(const MinkowskiDifference& pair, const Feature& feat
     return true;
 }
 
-// The vertices of a face's cap (gauss_map.hpp), each once, in the polytope's frame.
-void capVertices(const Polytope& polytope, const SmallVector<int, 8>& cap, SmallVector<int, 32>& vertices) {
-    for (int f : cap) {
-        const Polytope::Face& face = polytope.faces()[f];
-        for (int i = 0; i < face.count; ++i) {
-            const int vertex = polytope.faceVertices()[face.first + i];
-            bool seen = false;
-            for (int v : vertices) seen |= v == vertex;
-            if (!seen) vertices.push_back(vertex);
-        }
-    }
-}
-
 FeatureGeometry faceGeometry(const Polytope& polytope, int index, const Pose& toCommon) {
     FeatureGeometry geometry;
     geometry.type = FeatureType::Face;

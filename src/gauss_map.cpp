@@ -96,6 +96,18 @@ void faceCap(const Polytope& polytope, int face, const Vec3& direction, const An
     }
 }
 
+void capVertices(const Polytope& polytope, const SmallVector<int, 8>& cap, SmallVector<int, 32>& vertices) {
+    for (int f : cap) {
+        const Polytope::Face& face = polytope.faces()[f];
+        for (int i = 0; i < face.count; ++i) {
+            const int vertex = polytope.faceVertices()[face.first + i];
+            bool seen = false;
+            for (int v : vertices) seen |= v == vertex;
+            if (!seen) vertices.push_back(vertex);
+        }
+    }
+}
+
 int featureVertices(const Polytope& polytope, const Feature& feature, const int** indices, int* storage) {
     switch (feature.type) {
         case FeatureType::Vertex:

@@ -55,6 +55,10 @@ constexpr int kMaxCapFaces = 64;
 void faceCap(const Polytope& polytope, int face, const Vec3& direction, const AngularTolerance& tolerance,
              SmallVector<int, 8>& faces);
 
+/// The vertices of a face's cap (faceCap), each once, appended in the order the cap's loops meet
+/// them, in the polytope's frame.
+void capVertices(const Polytope& polytope, const SmallVector<int, 8>& cap, SmallVector<int, 32>& vertices);
+
 /// The feature's vertices in order (1 for a vertex, 2 for an edge, the CCW loop of a face).
 int featureVertices(const Polytope& polytope, const Feature& feature, const int** indices, int* storage);
 

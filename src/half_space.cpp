@@ -8,9 +8,9 @@
 // manifold when no reduction is needed. tests/half_space_test.cpp runs both on random poses.
 #include "half_space.hpp"
 
+#include "collide_general.hpp"
 #include "feature_intersection.hpp"
 #include "gauss_map.hpp"
-#include "reduction.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -120,33 +120,6 @@ Feature boxFeature(const Vec3& direction, int support, ToleranceTest& tolerance)
     return {FeatureType::Vertex, support};
 }
 
-// The vertex indices of a feature in order (featureVertices, inlined).
-int featureIndices(const Polytope& polytope, const Feature& feature, const int** indices, int* storage) {
-    if (feature.type == FeatureType::Face) {
-        const Polytope::Face& face = polytope.faces()[feature.index];
-        *indices = polytope.faceVertices().data() + face.first;
-        return face.count;
-    }
-    *indices = storage;
-    if (feature.type == FeatureType::Vertex) {
-        storage[0] = feature.index;
-        return 1;
-    }
-    storage[0] = polytope.edges()[feature.index].tail;
-    storage[1] = polytope.edges()[feature.index].head;
-    return 2;
-}
-
-// faceCap's own shortcut (gauss_map.cpp): a face within the tolerance whose nearest Gauss-map
-// neighbour is over twice the tolerance away is its cap alone. Same numbers, same slack.
-bool capIsFaceAlone(const Polytope& polytope, int face, const Vec3& direction, const AngularTolerance& tolerance) {
-    constexpr double kCosineSlack = 1e-9;
-    const Polytope::Face& selected = polytope.faces()[face];
-    const double twiceToleranceCosine = 2 * tolerance.cosine * tolerance.cosine - 1;
-    return tolerance.cosine >= 0 && selected.normal.dot(direction) >= tolerance.cosine &&
-           selected.nearestNeighbourCosine < twiceToleranceCosine - kCosineSlack;
-}
-
 // The contacts as collideGeneral's `add` makes them (x lifted half its depth onto the plane),
 // written straight to the manifold in the world frame as emit writes them: used when the points
 // cannot outnumber the caller's maximum, so that emit would keep them all in order.
@@ -193,19 +166,7 @@ public:
             planeBasis(normal, u, v);
             for (LiftedPoint& point : kept_) point.planar = Vec2(point.position.dot(u), point.position.dot(v));
         }
-        int chosen[kMaxManifoldPoints];
-        const int maxCount = std::max(1, std::min(settings.maxContacts, kMaxManifoldPoints));
-        const int total = static_cast<int>(kept_.size());
-        const int count = total <= maxCount ? total : reduceContacts(kept_, maxCount, chosen);
-        double nonFinite = 0;
-        for (int i = 0; i < count; ++i) {
-            const LiftedPoint& point = kept_[total <= maxCount ? i : chosen[i]];
-            manifold.points[i] = {poseA.apply(point.position), point.depth};
-            nonFinite += (manifold.points[i].position * 0.0).sum() + point.depth * 0.0;
-        }
-        manifold.pointCount = count;
-        if (!(nonFinite == 0))
-            throw InvalidInput("the contact overflows double precision (coordinates or offsets near 1e308)");
+        emitManifold(kept_, normal, poseA, settings, manifold);
     }
 
 private:
@@ -252,17 +213,9 @@ struct Query {
     // face's edges, each crossing once.
     template <class VertexDepth>
     void liftCap(const SmallVector<int, 8>& cap, VertexDepth depthOfVertex, GatheredPoints& points) const {
-        SmallVector<int, 32> capVertices;
-        for (int f : cap) {
-            const Polytope::Face& face = a.faces()[f];
-            for (int i = 0; i < face.count; ++i) {
-                const int vertex = a.faceVertices()[face.first + i];
-                bool seen = false;
-                for (int v : capVertices) seen |= v == vertex;
-                if (!seen) capVertices.push_back(vertex);
-            }
-        }
-        for (int v : capVertices) {
+        SmallVector<int, 32> vertices;
+        capVertices(a, cap, vertices);
+        for (int v : vertices) {
             const double depth = depthOfVertex(v);
             if (depth >= keepDepth) points.add(a.vertices()[v], depth);
         }
@@ -286,7 +239,7 @@ struct Query {
         const Vec3 normal = -plane.m;
         int storage[2];
         const int* indices = nullptr;
-        const int count = featureIndices(a, feature, &indices, storage);
+        const int count = featureVertices(a, feature, &indices, storage);
         const int maxCount = std::max(1, std::min(settings.maxContacts, kMaxManifoldPoints));
         const int mostPoints = settings.spanContactRegion ? 2 * count : count;
         auto keepDeepestIfNone = [&](auto& points) {
@@ -311,7 +264,6 @@ struct Query {
             liftLoop(indices, depths.data(), count, points);
         }
         keepDeepestIfNone(points);
-        manifold.normal = poseA.rotation * normal;
         points.emit(normal, poseA, settings, manifold);
     }
 };
@@ -357,7 +309,6 @@ Manifold collideSmallHull(const Polytope& a, const Pose& poseA, const PlaneInA& 
     manifold.featureB = {FeatureType::Face, 0};
     SmallVector<int, 8> cap;
     const bool hasCap = manifold.featureA.type == FeatureType::Face &&
-                        !capIsFaceAlone(a, manifold.featureA.index, normal, angularTolerance) &&
                         (faceCap(a, manifold.featureA.index, normal, angularTolerance, cap), cap.size() > 1);
     const double* height = heights;
     query.liftFeature(manifold.featureA, deepest, hasCap ? &cap : nullptr,

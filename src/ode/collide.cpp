@@ -420,14 +420,7 @@ Pose poseOf(dGeomID geom) {
     if (!geom) throw InvalidInput("gdc::ode::poseOf: null geom");
     if (dGeomIsSpace(geom) || dGeomGetClass(geom) == dPlaneClass)
         throw InvalidInput("gdc::ode::poseOf: a plane or space has no pose");
-    const dReal* position = dGeomGetPosition(geom);
-    const dReal* rotation = dGeomGetRotation(geom);  // 3x4 row-major (dMatrix3)
-    Pose pose;
-    for (int row = 0; row < 3; ++row) {
-        pose.position[row] = position[row];
-        for (int column = 0; column < 3; ++column) pose.rotation(row, column) = rotation[4 * row + column];
-    }
-    return pose;
+    return readPose(geom);
 }
 
 std::size_t liveConvexCount() { return detail::registeredConvexCount(); }
