@@ -152,7 +152,7 @@ TEST_CASE("vertex on face: a cube standing on its corner touches at that corner"
     CHECK(m.points[0].depth == Approx(sink).margin(1e-12));
 }
 
-TEST_CASE("separated pairs give no contacts; exactly touching pairs give depth 0 and a unit normal") {
+TEST_CASE("separated pairs give no contacts, exactly touching pairs give depth 0 and a unit normal") {
     std::mt19937 random(4);
     for (int trial = 0; trial < 100; ++trial) {
         Mat3 yaw = rotationAbout(Vec3::UnitZ(), std::uniform_real_distribution<double>(-3, 3)(random));

@@ -82,7 +82,7 @@ TEST_CASE("edge–face intersection is the edge clipped by the face") {
     for (const auto& p : points) CHECK(p.depth == Approx(-2 * p.position.z()).margin(1e-12));
 }
 
-TEST_CASE("crossing edges meet in one point; parallel overlapping edges in two") {
+TEST_CASE("crossing edges meet in one point, parallel overlapping edges in two") {
     FeatureGeometry a, b;
     a.type = b.type = FeatureType::Edge;
     a.points.push_back(Vec3(-1, 0, 0)), a.points.push_back(Vec3(1, 0, 0));
@@ -101,7 +101,7 @@ TEST_CASE("crossing edges meet in one point; parallel overlapping edges in two")
     CHECK(sameSets(actual, {Vec3(0.4, 0, -0.05), Vec3(1, 0, -0.05)}, 1e-12));
 }
 
-TEST_CASE("a vertex inside a face projects to one point; outside it to none") {
+TEST_CASE("a vertex inside a face projects to one point, outside it to none") {
     FeatureGeometry a = face({Vec2(-1, -1), Vec2(1, -1), Vec2(1, 1), Vec2(-1, 1)}, 0, 0, true);
     FeatureGeometry v;
     v.type = FeatureType::Vertex;

@@ -50,7 +50,7 @@ TEST_CASE("install() before dInitODE2() says to call dInitODE2 first", "[dropin]
     CHECK_THAT(gdcLastError(), Catch::Contains("dInitODE2"));
 }
 
-TEST_CASE("install() twice replaces the settings; after dCloseODE it must follow a new dInitODE2", "[dropin][misuse]") {
+TEST_CASE("install() twice replaces the settings, after dCloseODE it must follow a new dInitODE2", "[dropin][misuse]") {
     dInitODE2(0);
     CHECK(boxOnBoxContacts() == 4);  // ODE's dBoxBox
     gdc::ode::install(withMaxContacts(2));

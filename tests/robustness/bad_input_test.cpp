@@ -185,7 +185,7 @@ TEST_CASE("ODE: non-finite poses give a message through ODE's handler and 0 cont
     for (dGeomID geom : {box, convex, other, plane}) dGeomDestroy(geom);
 }
 
-TEST_CASE("ODE: a zero-size box gives a message and 0 contacts; a negative one is refused by ODE itself",
+TEST_CASE("ODE: a zero-size box gives a message and 0 contacts, a negative one is refused by ODE itself",
           "[robustness][bad][ode]") {
     {
         OdeSession session;
@@ -243,7 +243,7 @@ TEST_CASE("ODE: createConvex refuses empty, collinear and coplanar point sets wi
     CHECK(gdc::ode::liveConvexCount() == before);  // nothing half-made is left behind
 }
 
-TEST_CASE("ODE: createConvexStrict refuses non-convex and wrongly wound polygons, naming the plane; createConvex takes the hull",
+TEST_CASE("ODE: createConvexStrict refuses non-convex and wrongly wound polygons, naming the plane, createConvex takes the hull",
           "[robustness][bad][ode]") {
     OdeSession session;
     // A cube of half size 1 in dCreateConvex's layout; vertex i has the signs of bits x:1, y:2, z:4.
@@ -277,7 +277,7 @@ TEST_CASE("ODE: createConvexStrict refuses non-convex and wrongly wound polygons
     }
 }
 
-TEST_CASE("ODE: a plane with a zero normal is made a valid plane by ODE itself; contacts stay valid",
+TEST_CASE("ODE: a plane with a zero normal is made a valid plane by ODE itself, contacts stay valid",
           "[robustness][bad][ode]") {
     // dCreatePlane and dGeomPlaneSetParams replace a zero normal by (1, 0, 0) without a message
     // (ODE's make_sure_plane_normal_has_unit_length), so gdcontact only ever sees a unit normal;
