@@ -142,6 +142,19 @@ struct Scene::Impl {
     double stepContactPenetration = 0.0;
     int stepInvalid = 0;
     std::array<dContactGeom, kContactBuffer> buffer{};
+    // The whole-step path (setWholeStepCollision): each touching pair as spaceCollide's handler
+    // passed it, turned to creation order, and its contacts; sorted before the joints are made.
+    struct TouchingPair {
+        std::uint64_t first, second;
+        dGeomID geom1, geom2;
+        std::size_t offset;  // into wholeStepContacts
+        int count;
+        bool operator<(const TouchingPair& other) const {
+            return first != other.first ? first < other.first : second < other.second;
+        }
+    };
+    std::vector<TouchingPair> touching;
+    std::vector<dContactGeom> wholeStepContacts;
 };
 
 Scene::Scene(std::string name, const SceneOptions& options, const SolverSettings& defaults)
@@ -343,14 +356,17 @@ void Scene::collidePair(dGeomID o1, dGeomID o2) {
     if (!isDynamic(b1) && !isDynamic(b2)) return;   // carried (kinematic) body against the ground
     if (b1 && b2 && dAreConnectedExcluding(b1, b2, dJointTypeContact)) return;
 
-    // The geometric penetration of every pair the broad phase reports, whatever the method says.
+    // The geometric penetration of every pair the broad phase reports, whatever the method says
+    // (big worlds measure against the ground instead: groundPenetration()).
     const Impl::GeomInfo& g1 = info1->second;
     const Impl::GeomInfo& g2 = info2->second;
-    double overlap = 0.0;
-    if (g1.isPlane && !g2.isPlane) overlap = penetrationDepth(*g2.shape, poseOfGeom(o2), g1.plane);
-    else if (g2.isPlane && !g1.isPlane) overlap = penetrationDepth(*g1.shape, poseOfGeom(o1), g2.plane);
-    else if (!g1.isPlane && !g2.isPlane) overlap = penetrationDepth(*g1.shape, poseOfGeom(o1), *g2.shape, poseOfGeom(o2));
-    impl_->stepPenetration = std::max(impl_->stepPenetration, overlap - solver_.surfaceLayer);
+    if (!wholeStepCollision_) {
+        double overlap = 0.0;
+        if (g1.isPlane && !g2.isPlane) overlap = penetrationDepth(*g2.shape, poseOfGeom(o2), g1.plane);
+        else if (g2.isPlane && !g1.isPlane) overlap = penetrationDepth(*g1.shape, poseOfGeom(o1), g2.plane);
+        else if (!g1.isPlane && !g2.isPlane) overlap = penetrationDepth(*g1.shape, poseOfGeom(o1), *g2.shape, poseOfGeom(o2));
+        impl_->stepPenetration = std::max(impl_->stepPenetration, overlap - solver_.surfaceLayer);
+    }
 
     const int wanted = solver_.maxContactsPerPair;
     dContactGeom* out = impl_->buffer.data();
@@ -402,7 +418,11 @@ void Scene::collidePair(dGeomID o1, dGeomID o2) {
             break;
         }
     }
+    addContactJoints(o1, o2, out, count);
+}
 
+void Scene::addContactJoints(dGeomID o1, dGeomID o2, const dContactGeom* out, int count) {
+    dBodyID b1 = dGeomGetBody(o1), b2 = dGeomGetBody(o2);
     for (int i = 0; i < count; ++i) {
         const dContactGeom& c = out[i];
         const Vec3 normal(c.normal[0], c.normal[1], c.normal[2]);
@@ -427,6 +447,47 @@ void Scene::collidePair(dGeomID o1, dGeomID o2) {
     }
 }
 
+void Scene::wholeStepHandler(void* data, dGeomID o1, dGeomID o2, dContactGeom* contacts, int count) {
+    Scene& scene = *static_cast<Scene*>(data);
+    Impl& impl = *scene.impl_;
+    // The same pairs collidePair skips (spaceCollide has collided them already; few are skipped).
+    dBodyID b1 = dGeomGetBody(o1), b2 = dGeomGetBody(o2);
+    if (b1 == b2 || (!isDynamic(b1) && !isDynamic(b2))) return;
+    if (b1 && b2 && dAreConnectedExcluding(b1, b2, dJointTypeContact)) return;
+    auto info1 = impl.geoms.find(o1), info2 = impl.geoms.find(o2);
+    if (info1 == impl.geoms.end() || info2 == impl.geoms.end()) return;
+    const std::size_t offset = impl.wholeStepContacts.size();
+    impl.wholeStepContacts.insert(impl.wholeStepContacts.end(), contacts, contacts + count);
+    if (info1->second.serial < info2->second.serial) {
+        impl.touching.push_back({info1->second.serial, info2->second.serial, o1, o2, offset, count});
+    } else {
+        // Creation order, as the other methods see the pair: the normal (from o2 into o1) turns.
+        for (int i = 0; i < count; ++i)
+            for (int k = 0; k < 3; ++k) impl.wholeStepContacts[offset + i].normal[k] *= -1;
+        impl.touching.push_back({info2->second.serial, info1->second.serial, o2, o1, offset, count});
+    }
+}
+
+void Scene::collideWholeStep() {
+    impl_->touching.clear();
+    impl_->wholeStepContacts.clear();
+    gdc::ode::spaceCollide(space_, solver_.maxContactsPerPair, this, &Scene::wholeStepHandler);
+    // spaceCollide hands the pairs over in the broad phase's order; joints are made in creation
+    // order, as the other methods make them, so that a reset scene replays exactly.
+    std::sort(impl_->touching.begin(), impl_->touching.end());
+    for (const Impl::TouchingPair& pair : impl_->touching)
+        addContactJoints(pair.geom1, pair.geom2, impl_->wholeStepContacts.data() + pair.offset, pair.count);
+}
+
+double Scene::groundPenetration() const {
+    double deepest = 0.0;  // the ground is z = 0 (addGroundPlane)
+    for (const Body& body : bodies_)
+        for (const Part& part : body.parts)
+            for (const Vec3& vertex : part.shape->vertices())
+                deepest = std::max(deepest, -worldHeight(part, vertex));
+    return deepest - solver_.surfaceLayer;
+}
+
 void Scene::step() {
     if (!world_) reset();
     if (exploded_) return;
@@ -438,10 +499,15 @@ void Scene::step() {
 
     const auto collisionStart = Clock::now();
     if (method_ == Method::Tracking) impl_->trackingCache.beginStep();
-    impl_->pairs.clear();
-    dSpaceCollide(space_, this, &Scene::nearCallback);
-    std::sort(impl_->pairs.begin(), impl_->pairs.end());
-    for (const Impl::Pair& pair : impl_->pairs) collidePair(pair.geom1, pair.geom2);
+    if (wholeStepCollision_ && method_ == Method::Gdcontact) {
+        collideWholeStep();
+    } else {
+        impl_->pairs.clear();
+        dSpaceCollide(space_, this, &Scene::nearCallback);
+        std::sort(impl_->pairs.begin(), impl_->pairs.end());
+        for (const Impl::Pair& pair : impl_->pairs) collidePair(pair.geom1, pair.geom2);
+    }
+    if (wholeStepCollision_) impl_->stepPenetration = groundPenetration();
     if (method_ == Method::Tracking) {
         impl_->trackingCache.endStep();
         // Plane proxies live exactly as long as their pair's tracking state.
@@ -563,7 +629,7 @@ void Scene::writeCsv(const std::string& path) const {
     if (!file) throw std::runtime_error("error writing " + path);
 }
 
-std::vector<std::string> sceneNames() { return {"box_drop", "tower", "brick_wall", "composites"}; }
+std::vector<std::string> sceneNames() { return {"box_drop", "tower", "brick_wall", "composites", "big_world"}; }
 
 std::unique_ptr<Scene> makeScene(const std::string& name, const SceneOptions& options) {
     std::unique_ptr<Scene> scene;
@@ -571,7 +637,8 @@ std::unique_ptr<Scene> makeScene(const std::string& name, const SceneOptions& op
     else if (name == "tower") scene = makeTower(options);
     else if (name == "brick_wall") scene = makeBrickWall(options);
     else if (name == "composites") scene = makeComposites(options);
-    else throw std::invalid_argument("unknown scene '" + name + "' (box_drop, tower, brick_wall, composites)");
+    else if (name == "big_world") scene = makeBigWorld(options);
+    else throw std::invalid_argument("unknown scene '" + name + "' (box_drop, tower, brick_wall, composites, big_world)");
     scene->reset();
     return scene;
 }

@@ -68,6 +68,7 @@ struct SceneOptions {
     std::optional<SolverSettings> solver;  ///< absent: the scene's own settings
     bool convexBoxes = false;             ///< boxes as dConvex (gdc::ode::createConvex) instead of dBox
     bool scripted = true;                 ///< run the scene's scripted user (builder / remover / push)
+    int bodies = 0;                       ///< big_world: how many bodies (0: the scene's own count)
 };
 
 /// One convex part of a body: an ODE geom and the polytope it is (in the geom's local frame).
@@ -219,6 +220,14 @@ protected:
 
     bool scripted() const { return options_.scripted; }
     bool convexBoxes() const { return options_.convexBoxes; }
+    const SceneOptions& options() const { return options_; }
+
+    /// For scenes of thousands of bodies (big_world), called in the constructor. The gdcontact
+    /// method then collides through gdc::ode::spaceCollide (ODE's broad phase, gdcontact's narrow
+    /// phase on setThreadCount's threads, with install()'s settings: contactSettings() are not
+    /// used), and the geometric penetration measure is the deepest vertex below the ground plane
+    /// (an exact separating-axis test per pair would cost more than the whole step).
+    void setWholeStepCollision(bool enabled) { wholeStepCollision_ = enabled; }
 
     /// A dynamic body of convex parts, each placed at its offset in the composite's frame; `pose`
     /// places that frame in the world. The ODE body origin is the parts' common centre of mass
@@ -242,6 +251,10 @@ private:
     void applySolverSettings();
     static void nearCallback(void* data, dGeomID o1, dGeomID o2);
     void collidePair(dGeomID o1, dGeomID o2);
+    void addContactJoints(dGeomID o1, dGeomID o2, const dContactGeom* contacts, int count);
+    void collideWholeStep();
+    static void wholeStepHandler(void* data, dGeomID o1, dGeomID o2, dContactGeom* contacts, int count);
+    double groundPenetration() const;
     void measure();
 
     std::string name_;
@@ -263,6 +276,7 @@ private:
     std::vector<Measures> history_;
     std::vector<std::vector<double>> extraHistory_;
     std::unique_ptr<Impl> impl_;  // per-step scratch, tracking cache, geom → part lookup
+    bool wholeStepCollision_ = false;
 };
 
 /// Names accepted by makeScene(), in the report's order.

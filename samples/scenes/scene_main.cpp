@@ -1,9 +1,11 @@
 // One headless program per scene (the scene's name is compiled in as GDC_SCENE_NAME):
 //   box_drop --method gdc|tracking|ode [--steps N] [--dt S] [--stepper world|quick] [--iterations N]
 //            [--erp X] [--cfm X] [--mu X] [--contacts N] [--surface-layer M] [--convex] [--no-script]
-//            [--csv FILE] [--summary FILE]
+//            [--csv FILE] [--summary FILE] [--bodies N (big_world)] [--threads N (big_world)]
 // Prints one line: the quality measures after rest (max/mean), timings, and the scene's verdict.
 #include "scene.hpp"
+
+#include <gdcontact/ode.hpp>
 
 #include <cstdio>
 #include <cstdlib>
@@ -26,11 +28,13 @@ void usage(std::ostream& out) {
     out << "usage: " << GDC_SCENE_NAME
         << " [--method gdc|tracking|ode] [--steps N] [--dt S] [--stepper world|quick] [--iterations N]\n"
            "       [--erp X] [--cfm X] [--mu X] [--contacts N] [--surface-layer M] [--convex] [--no-script]\n"
-           "       [--csv FILE] [--summary FILE]\n"
+           "       [--csv FILE] [--summary FILE] [--bodies N] [--threads N]\n"
            "  --method     contact generation: gdc (gdcontact), tracking (persistent manifold), ode (ODE's own)\n"
            "  --steps      number of steps (default: the scene's full duration)\n"
            "  --convex     box-shaped bodies as dConvex instead of dBox\n"
            "  --no-script  no scripted user (no builder, remover or push)\n"
+           "  --bodies     big_world: number of bodies (default 2000)\n"
+           "  --threads    big_world: gdc::ode::setThreadCount (default 0, one per hardware thread)\n"
            "  --csv        per-step measures; --summary: the summary as JSON\n";
 }
 
@@ -58,6 +62,7 @@ int main(int argc, char** argv) {
     std::vector<std::function<void(SolverSettings&)>> solverChanges;
     std::string csvPath, summaryPath;
     long steps = -1;
+    int threads = 0;
     try {
         for (int i = 1; i < argc; ++i) {
             const std::string option = argv[i];
@@ -104,6 +109,14 @@ int main(int argc, char** argv) {
             } else if (option == "--surface-layer") {
                 const double x = parseNumber(option, value());
                 solverChanges.push_back([x](SolverSettings& solver) { solver.surfaceLayer = x; });
+            } else if (option == "--bodies") {
+                const double n = parseNumber(option, value());
+                if (!(n >= 1 && n <= 1e6)) throw std::invalid_argument("--bodies must be in 1..1000000");
+                options.bodies = static_cast<int>(n);
+            } else if (option == "--threads") {
+                const double n = parseNumber(option, value());
+                if (!(n >= 0 && n <= 256)) throw std::invalid_argument("--threads must be in 0..256");
+                threads = static_cast<int>(n);
             } else if (option == "--convex") {
                 options.convexBoxes = true;
             } else if (option == "--no-script") {
@@ -125,6 +138,7 @@ int main(int argc, char** argv) {
     dInitODE2(0);
     int status = 0;
     try {
+        gdc::ode::setThreadCount(threads);
         auto scene = gdc::scenes::makeScene(GDC_SCENE_NAME, options);
         SolverSettings settings = scene->solver();
         for (const auto& change : solverChanges) change(settings);

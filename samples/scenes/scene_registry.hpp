@@ -9,5 +9,6 @@ std::unique_ptr<Scene> makeBoxDrop(const SceneOptions& options);
 std::unique_ptr<Scene> makeTower(const SceneOptions& options);
 std::unique_ptr<Scene> makeBrickWall(const SceneOptions& options);
 std::unique_ptr<Scene> makeComposites(const SceneOptions& options);
+std::unique_ptr<Scene> makeBigWorld(const SceneOptions& options);
 
 }  // namespace gdc::scenes
