@@ -19,10 +19,12 @@
 // instrumented. The pool's threads sleep on a condition variable between calls.
 #include <gdcontact/ode.hpp>
 
+#include "space_collide_profile.hpp"
 #include "state.hpp"
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
@@ -39,6 +41,15 @@ namespace {
 
 constexpr int kMaxThreads = 256;
 
+// The phase timing of space_collide_profile.hpp: off unless a benchmark asks.
+std::atomic<bool> profiling{false};
+thread_local detail::SpaceCollideProfile lastProfile;
+using ProfileClock = std::chrono::steady_clock;
+
+std::int64_t nanosSince(ProfileClock::time_point start) {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(ProfileClock::now() - start).count();
+}
+
 // 0: one per hardware thread.
 std::atomic<int> requestedThreads{0};
 
@@ -51,15 +62,28 @@ int effectiveThreadCount() {
 
 // One parallel loop over indices that a producer publishes while the loop runs: body(context,
 // begin, end) in chunks, taken in any order by any participant (each index writes only its own
-// output, so the order of execution is invisible). The producer stores `available` after each
-// index it makes ready and sets `closed` after the last; a participant ahead of it waits.
+// output, so the order of execution is invisible). The producer stores `available` each time a
+// whole chunk is ready, and the final count before it sets `closed`; a participant ahead of it
+// waits. `next` (written by every participant) and `available` (by the producer, read by the
+// waiting participants) sit on separate cache lines: on one line, every pair the broad phase
+// listed would take that line away from a worker taking its next chunk, and back.
 struct Job {
     void (*body)(void* context, std::size_t begin, std::size_t end) = nullptr;
     void* context = nullptr;
     std::size_t chunk = 1;
-    std::atomic<std::size_t> next{0};
-    std::atomic<std::size_t> available{0};
+    alignas(64) std::atomic<std::size_t> next{0};
+    alignas(64) std::atomic<std::size_t> available{0};
     std::atomic<bool> closed{false};
+
+    // The producer: indices [0, count) are ready; publishes at chunk boundaries only.
+    void ready(std::size_t count) {
+        if (count % chunk == 0) available.store(count, std::memory_order_release);
+    }
+    // The producer: every index is ready; `count` is the final number.
+    void close(std::size_t count) {
+        available.store(count, std::memory_order_release);
+        closed.store(true, std::memory_order_release);
+    }
 
     void work() {
         for (;;) {
@@ -244,6 +268,8 @@ struct Call {
     Job& job;  // publishes each gdcontact pair to the pool as soon as it is listed
     bool serial;  // no pool: collide each gdcontact pair at once, as a near callback would
     std::exception_ptr failure;  // thrown inside ODE's broad phase, rethrown after it
+    std::int64_t* serialNarrowNanos = nullptr;  // profiling, serial: gdcontact's collide calls
+    std::size_t serialGdcontactPairs = 0;       // profiling, serial: how many
 };
 
 // Box, createConvex convex or plane (not plane–plane): the pairs collide() handles.
@@ -271,15 +297,23 @@ void addPair(Call& call, dGeomID o1, dGeomID o2) {
         slot.o2 = o2;
         slot.count = 0;
         scratch.gdcontactPairs = index + 1;
-        call.job.available.store(index + 1, std::memory_order_release);
+        call.job.ready(index + 1);
         return;
     }
     // ODE's own collider as a near callback would call it (or, when serial, gdcontact's), here and
     // now on the calling thread, the contacts packed one pair after the other.
     const int room = ours ? call.slotSize : call.maxContacts;
     dContactGeom* out = scratch.packed.reserve(static_cast<std::size_t>(room));
-    const int count = ours ? collide(o1, o2, room, out, sizeof(dContactGeom))  // never throws
-                           : dCollide(o1, o2, room, out, sizeof(dContactGeom));
+    int count;
+    if (ours && call.serialNarrowNanos) {
+        const auto start = ProfileClock::now();
+        count = collide(o1, o2, room, out, sizeof(dContactGeom));
+        *call.serialNarrowNanos += nanosSince(start);
+        ++call.serialGdcontactPairs;
+    } else {
+        count = ours ? collide(o1, o2, room, out, sizeof(dContactGeom))  // never throws
+                     : dCollide(o1, o2, room, out, sizeof(dContactGeom));
+    }
     scratch.pairs.push_back(Pair{o1, o2, scratch.packed.size, count, false});
     scratch.packed.size += static_cast<std::size_t>(std::max(count, 0));
 }
@@ -303,8 +337,12 @@ void nearCallback(void* data, dGeomID o1, dGeomID o2) {
 
 // The pool's loop body: gdcontact pairs [begin, end) into their slots.
 struct NarrowPhase {
-    Scratch* scratch;
-    int slotSize;
+    Scratch* scratch = nullptr;
+    int slotSize = 0;
+    // Profiling only (collideRangeProfiled):
+    std::atomic<std::int64_t> narrowNanos{0};  // summed over the threads
+    std::thread::id caller;
+    std::int64_t callerNanos = 0;               // the calling thread's share
 };
 
 void collideRange(void* context, std::size_t begin, std::size_t end) {
@@ -318,6 +356,17 @@ void collideRange(void* context, std::size_t begin, std::size_t end) {
                              block.contacts.get() + offset * static_cast<std::size_t>(phase.slotSize),
                              sizeof(dContactGeom));
     }
+}
+
+// collideRange with the clock read around each chunk (a few microseconds of work): the profile's
+// narrow-phase time, by thread.
+void collideRangeProfiled(void* context, std::size_t begin, std::size_t end) {
+    NarrowPhase& phase = *static_cast<NarrowPhase*>(context);
+    const auto start = ProfileClock::now();
+    collideRange(context, begin, end);
+    const std::int64_t spent = nanosSince(start);
+    phase.narrowNanos.fetch_add(spent, std::memory_order_relaxed);
+    if (std::this_thread::get_id() == phase.caller) phase.callerNanos += spent;
 }
 
 // The calling thread's scratch; a fresh one when spaceCollide is re-entered from a handler.
@@ -363,12 +412,17 @@ void spaceCollide(dSpaceID space, int maxContactsPerPair, void* data, ContactHan
         throw InvalidInput("gdc::ode::spaceCollide: maxContactsPerPair must be in 1..65535, got " +
                            std::to_string(maxContactsPerPair));
 
+    const bool profile = profiling.load(std::memory_order_relaxed);
+    const auto callStart = profile ? ProfileClock::now() : ProfileClock::time_point{};
     ScratchLease lease;
     Scratch& scratch = *lease.scratch;
     const int slotSize = std::min(maxContactsPerPair, kMaxManifoldPoints);
-    NarrowPhase phase{&scratch, slotSize};
+    NarrowPhase phase;
+    phase.scratch = &scratch;
+    phase.slotSize = slotSize;
+    phase.caller = std::this_thread::get_id();
     Job job;
-    job.body = &collideRange;
+    job.body = profile ? &collideRangeProfiled : &collideRange;
     job.context = &phase;
     job.chunk = 8;  // a few microseconds of work: balances uneven pairs, keeps the counter quiet
     const int threads = effectiveThreadCount();
@@ -376,12 +430,15 @@ void spaceCollide(dSpaceID space, int maxContactsPerPair, void* data, ContactHan
     std::unique_lock<std::mutex> poolLock(pool.use, std::defer_lock);
     const bool parallel = threads > 1 && poolLock.try_lock();  // else serial: 1 thread, or pool busy
     Call call{scratch, maxContactsPerPair, slotSize, detail::threadCache(), job, !parallel, nullptr};
+    std::int64_t serialNarrowNanos = 0;
+    if (profile && !parallel) call.serialNarrowNanos = &serialNarrowNanos;
 
     // 1. The broad phase (ODE's, serial, on this thread): ODE's pairs collided at once; gdcontact's
     //    listed, and collided on the pool threads as soon as listed (2.) — or at once when serial.
     if (parallel) pool.start(job, threads - 1);
     dSpaceCollide(space, &call, &nearCallback);
-    job.closed.store(true, std::memory_order_release);
+    job.close(scratch.gdcontactPairs);
+    const auto broadPhaseEnd = profile ? ProfileClock::now() : ProfileClock::time_point{};
 
     // 2. The rest of gdcontact's pairs, on this thread too; then every pair is done.
     if (parallel) {
@@ -390,6 +447,7 @@ void spaceCollide(dSpaceID space, int maxContactsPerPair, void* data, ContactHan
         poolLock.unlock();
     }
     if (call.failure) std::rethrow_exception(call.failure);
+    const auto drainEnd = profile ? ProfileClock::now() : ProfileClock::time_point{};
 
     // 3. The handler, on the calling thread, in the broad phase's order.
     for (const Pair& pair : scratch.pairs) {
@@ -406,6 +464,30 @@ void spaceCollide(dSpaceID space, int maxContactsPerPair, void* data, ContactHan
         }
         if (count > 0) handler(data, pair.o1, pair.o2, contacts, count);
     }
+
+    if (profile) {
+        const auto end = ProfileClock::now();
+        auto seconds = [](ProfileClock::duration d) { return std::chrono::duration<double>(d).count(); };
+        detail::SpaceCollideProfile& p = lastProfile;
+        p.threads = parallel ? threads : 1;
+        p.gdcontactPairs = parallel ? scratch.gdcontactPairs : call.serialGdcontactPairs;
+        p.otherPairs = scratch.pairs.size() - p.gdcontactPairs;
+        p.totalSeconds = seconds(end - callStart);
+        p.broadPhaseSeconds = seconds(broadPhaseEnd - callStart);
+        p.drainSeconds = seconds(drainEnd - broadPhaseEnd);
+        p.handlerSeconds = seconds(end - drainEnd);
+        const std::int64_t narrow = parallel ? phase.narrowNanos.load() : serialNarrowNanos;
+        p.narrowSeconds = 1e-9 * static_cast<double>(narrow);
+        p.narrowOnCallerSeconds = 1e-9 * static_cast<double>(parallel ? phase.callerNanos : serialNarrowNanos);
+    }
 }
+
+namespace detail {
+
+void setSpaceCollideProfiling(bool enabled) { profiling.store(enabled, std::memory_order_relaxed); }
+
+SpaceCollideProfile lastSpaceCollideProfile() { return lastProfile; }
+
+}  // namespace detail
 
 }  // namespace gdc::ode

@@ -1,7 +1,10 @@
 // gdc::ode::spaceCollide: the same contacts, in the same order, as dSpaceCollide with a near
 // callback calling dCollide (after install()), for every thread count; a whole simulation that is
-// bit-identical for 1, 2 and 4 threads; bad input rejected where it enters.
+// bit-identical for 1, 2 and 4 threads; bad input rejected where it enters; the phase profile the
+// big-world benchmark reads.
 #include <gdcontact/ode.hpp>
+
+#include "ode/space_collide_profile.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -391,4 +394,63 @@ TEST_CASE("thousands of pairs (several slot blocks) and a changed maxContactsPer
         }
     }
     dSpaceDestroy(space);
+}
+
+namespace {
+
+struct PairCount {
+    std::size_t gdcontact = 0, other = 0;
+};
+
+void countNearCallback(void* data, dGeomID o1, dGeomID o2) {
+    if (dGeomIsSpace(o1) || dGeomIsSpace(o2)) {
+        dSpaceCollide2(o1, o2, data, &countNearCallback);
+        if (dGeomIsSpace(o1)) dSpaceCollide(reinterpret_cast<dSpaceID>(o1), data, &countNearCallback);
+        if (dGeomIsSpace(o2)) dSpaceCollide(reinterpret_cast<dSpaceID>(o2), data, &countNearCallback);
+        return;
+    }
+    PairCount& count = *static_cast<PairCount*>(data);
+    const int c1 = dGeomGetClass(o1), c2 = dGeomGetClass(o2);
+    const bool ours = isGdcontactClass(c1) && isGdcontactClass(c2) && !(c1 == dPlaneClass && c2 == dPlaneClass);
+    ++(ours ? count.gdcontact : count.other);
+}
+
+void ignoreContacts(void*, dGeomID, dGeomID, dContactGeom*, int) {}
+
+}  // namespace
+
+TEST_CASE("spaceCollide's phase profile counts the broad phase's pairs and its phases make up the call",
+          "[big][threads]") {
+    Session session;
+    Pile pile(11);
+    for (int i = 0; i < 30; ++i) pile.step(true);  // settled into touching pairs
+    PairCount expected;
+    dSpaceCollide(pile.space, &expected, &countNearCallback);
+    REQUIRE(expected.gdcontact > 20);
+    REQUIRE(expected.other > 0);  // the spheres
+
+    gdc::ode::detail::setSpaceCollideProfiling(true);
+    for (int threads : {1, 2}) {
+        gdc::ode::setThreadCount(threads);
+        gdc::ode::spaceCollide(pile.space, Pile::kMaxContacts, nullptr, &ignoreContacts);
+        const gdc::ode::detail::SpaceCollideProfile p = gdc::ode::detail::lastSpaceCollideProfile();
+        INFO(threads << " threads");
+        CHECK(p.threads == threads);
+        CHECK(p.gdcontactPairs == expected.gdcontact);
+        CHECK(p.otherPairs == expected.other);
+        CHECK(p.narrowSeconds > 0.0);
+        CHECK(p.narrowOnCallerSeconds <= p.narrowSeconds);
+        CHECK(p.broadPhaseSeconds > 0.0);
+        CHECK(p.handlerSeconds >= 0.0);
+        const double phases = p.broadPhaseSeconds + p.drainSeconds + p.handlerSeconds;
+        CHECK(phases <= p.totalSeconds);
+        CHECK(phases >= 0.9 * p.totalSeconds);
+        if (threads == 1) CHECK(p.narrowSeconds <= p.broadPhaseSeconds);  // serial: inside the broad phase
+    }
+
+    // Off: a call leaves the last record alone.
+    const double recorded = gdc::ode::detail::lastSpaceCollideProfile().totalSeconds;
+    gdc::ode::detail::setSpaceCollideProfiling(false);
+    gdc::ode::spaceCollide(pile.space, Pile::kMaxContacts, nullptr, &ignoreContacts);
+    CHECK(gdc::ode::detail::lastSpaceCollideProfile().totalSeconds == recorded);
 }

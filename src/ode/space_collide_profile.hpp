@@ -1,0 +1,32 @@
+// Where gdc::ode::spaceCollide spends a call's time, for the big-world benchmark
+// (bench/big_world.cpp) and for anyone profiling a scene: off by default, and then the only cost
+// in the call is one relaxed atomic load. Not part of the public API (include/gdcontact/ode.hpp):
+// the phases are the implementation's, and may change with it.
+#pragma once
+
+#include <gdcontact/export.hpp>
+
+#include <cstddef>
+
+namespace gdc::ode::detail {
+
+/// One spaceCollide call, wall-clock seconds on the calling thread unless said otherwise.
+struct SpaceCollideProfile {
+    int threads = 0;                  ///< threads that could work on gdcontact's pairs (1: serial)
+    std::size_t gdcontactPairs = 0;   ///< candidate pairs gdcontact collided
+    std::size_t otherPairs = 0;       ///< candidate pairs dCollide collided on the calling thread
+    double totalSeconds = 0;          ///< the whole call
+    double broadPhaseSeconds = 0;     ///< dSpaceCollide: ODE's broad phase, listing the pairs, dCollide's
+                                      ///< pairs (and, serial, gdcontact's: see narrowSeconds)
+    double drainSeconds = 0;          ///< after the broad phase until every gdcontact pair was collided
+    double handlerSeconds = 0;        ///< the handler, pair by pair, in the broad phase's order
+    double narrowSeconds = 0;         ///< inside gdcontact's collide for its pairs, summed over threads
+    double narrowOnCallerSeconds = 0; ///< the part of narrowSeconds on the calling thread
+};
+
+/// Turns the recording on or off for every later spaceCollide call (any thread).
+GDCONTACT_API void setSpaceCollideProfiling(bool enabled);
+/// The calling thread's last spaceCollide call while recording was on.
+GDCONTACT_API SpaceCollideProfile lastSpaceCollideProfile();
+
+}  // namespace gdc::ode::detail
