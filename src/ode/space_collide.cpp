@@ -3,8 +3,10 @@
 // thread; the pairs gdcontact handles are collided on a small pool of threads, each into its own
 // slot, as soon as the broad phase lists them (the pool works while the broad phase still runs);
 // the other pairs go to dCollide on the calling thread, inside the broad phase; then the handler
-// runs on the calling thread for every touching pair, in the broad phase's order. So the output
-// (and the contact joints a handler makes from it) does not depend on the thread count.
+// runs on the calling thread for every touching pair, in the broad phase's order, while the pool
+// finishes the narrow phase (the calling thread collides pairs too whenever the next pair in order
+// is not done yet). So the output (and the contact joints a handler makes from it) does not depend
+// on the thread count.
 //
 // Why the pool may read geoms while the broad phase runs: ODE's spaces (simple, hash) clean every
 // geom of the space tree — world pose and AABB, recursively into nested spaces — before they report
@@ -85,20 +87,24 @@ struct Job {
         closed.store(true, std::memory_order_release);
     }
 
-    void work() {
-        for (;;) {
-            const std::size_t begin = next.fetch_add(chunk, std::memory_order_relaxed);
-            std::size_t end = begin + chunk;
-            for (int spins = 0;; ++spins) {
-                if (available.load(std::memory_order_acquire) >= end) break;
-                if (closed.load(std::memory_order_acquire)) {  // `available` is final now
-                    end = std::min(end, available.load(std::memory_order_acquire));
-                    break;
-                }
-                if (spins >= 64) std::this_thread::yield();  // the broad phase is behind
+    // Takes the next chunk and runs it; false when none is left (every index taken).
+    bool workChunk() {
+        const std::size_t begin = next.fetch_add(chunk, std::memory_order_relaxed);
+        std::size_t end = begin + chunk;
+        for (int spins = 0;; ++spins) {
+            if (available.load(std::memory_order_acquire) >= end) break;
+            if (closed.load(std::memory_order_acquire)) {  // `available` is final now
+                end = std::min(end, available.load(std::memory_order_acquire));
+                break;
             }
-            if (begin >= end) return;
-            body(context, begin, end);
+            if (spins >= 64) std::this_thread::yield();  // the broad phase is behind
+        }
+        if (begin >= end) return false;
+        body(context, begin, end);
+        return true;
+    }
+    void work() {
+        while (workChunk()) {
         }
     }
 };
@@ -205,7 +211,9 @@ constexpr int kBlocks = 40;  // kFirstBlock · (2^40 − 1) pairs: more than mem
 struct Slot {
     dGeomID o1;
     dGeomID o2;
-    int count;
+    // Contacts found, stored (release) by the thread that collided the pair; −1 until then. The
+    // handler loop reads it (acquire) to know the pair's contacts are there.
+    std::atomic<int> count;
 };
 
 struct SlotBlock {
@@ -295,7 +303,7 @@ void addPair(Call& call, dGeomID o1, dGeomID o2) {
         Slot& slot = scratch.slotFor(index, call.slotSize, contacts);
         slot.o1 = o1;
         slot.o2 = o2;
-        slot.count = 0;
+        slot.count.store(-1, std::memory_order_relaxed);  // published by Job::ready (release)
         scratch.gdcontactPairs = index + 1;
         call.job.ready(index + 1);
         return;
@@ -343,6 +351,8 @@ struct NarrowPhase {
     std::atomic<std::int64_t> narrowNanos{0};  // summed over the threads
     std::thread::id caller;
     std::int64_t callerNanos = 0;               // the calling thread's share
+    ProfileClock::time_point callStart;
+    std::atomic<std::int64_t> poolStartNanos{-1};  // a pool thread's first chunk, from callStart
 };
 
 void collideRange(void* context, std::size_t begin, std::size_t end) {
@@ -352,9 +362,10 @@ void collideRange(void* context, std::size_t begin, std::size_t end) {
         SlotBlock& block = phase.scratch->blocks[blockOf(i, offset)];
         Slot& slot = block.slots[offset];
         // collide() never throws: a failure becomes a dMessage and 0 contacts.
-        slot.count = collide(slot.o1, slot.o2, phase.slotSize,
-                             block.contacts.get() + offset * static_cast<std::size_t>(phase.slotSize),
-                             sizeof(dContactGeom));
+        const int count = collide(slot.o1, slot.o2, phase.slotSize,
+                                  block.contacts.get() + offset * static_cast<std::size_t>(phase.slotSize),
+                                  sizeof(dContactGeom));
+        slot.count.store(count, std::memory_order_release);
     }
 }
 
@@ -363,10 +374,16 @@ void collideRange(void* context, std::size_t begin, std::size_t end) {
 void collideRangeProfiled(void* context, std::size_t begin, std::size_t end) {
     NarrowPhase& phase = *static_cast<NarrowPhase*>(context);
     const auto start = ProfileClock::now();
+    const bool onCaller = std::this_thread::get_id() == phase.caller;
+    if (!onCaller && phase.poolStartNanos.load(std::memory_order_relaxed) < 0) {
+        std::int64_t none = -1;
+        phase.poolStartNanos.compare_exchange_strong(
+            none, std::chrono::duration_cast<std::chrono::nanoseconds>(start - phase.callStart).count());
+    }
     collideRange(context, begin, end);
     const std::int64_t spent = nanosSince(start);
     phase.narrowNanos.fetch_add(spent, std::memory_order_relaxed);
-    if (std::this_thread::get_id() == phase.caller) phase.callerNanos += spent;
+    if (onCaller) phase.callerNanos += spent;
 }
 
 // The calling thread's scratch; a fresh one when spaceCollide is re-entered from a handler.
@@ -421,6 +438,7 @@ void spaceCollide(dSpaceID space, int maxContactsPerPair, void* data, ContactHan
     phase.scratch = &scratch;
     phase.slotSize = slotSize;
     phase.caller = std::this_thread::get_id();
+    phase.callStart = callStart;
     Job job;
     job.body = profile ? &collideRangeProfiled : &collideRange;
     job.context = &phase;
@@ -428,7 +446,18 @@ void spaceCollide(dSpaceID space, int maxContactsPerPair, void* data, ContactHan
     const int threads = effectiveThreadCount();
     WorkerPool& pool = workerPool();
     std::unique_lock<std::mutex> poolLock(pool.use, std::defer_lock);
-    const bool parallel = threads > 1 && poolLock.try_lock();  // else serial: 1 thread, or pool busy
+    // Else serial: 1 thread, or the pool busy — with another thread's call, or with this thread's own
+    // (a handler calling spaceCollide: the pool is held until the handler loop ends).
+    thread_local bool holdingPool = false;
+    const bool parallel = threads > 1 && !holdingPool && poolLock.try_lock();
+    struct PoolHeld {  // holdingPool while this call holds the pool, even when the handler throws
+        bool& flag;
+        bool held;
+        ~PoolHeld() {
+            if (held) flag = false;
+        }
+    } poolHeld{holdingPool, parallel};
+    if (parallel) holdingPool = true;
     Call call{scratch, maxContactsPerPair, slotSize, detail::threadCache(), job, !parallel, nullptr};
     std::int64_t serialNarrowNanos = 0;
     if (profile && !parallel) call.serialNarrowNanos = &serialNarrowNanos;
@@ -440,30 +469,51 @@ void spaceCollide(dSpaceID space, int maxContactsPerPair, void* data, ContactHan
     job.close(scratch.gdcontactPairs);
     const auto broadPhaseEnd = profile ? ProfileClock::now() : ProfileClock::time_point{};
 
-    // 2. The rest of gdcontact's pairs, on this thread too; then every pair is done.
-    if (parallel) {
+    // Every pair collided and the pool released: after a failure, or an exception from the handler
+    // (the pool's threads may still be colliding pairs into this call's slots).
+    auto finishPool = [&] {
+        if (!parallel) return;
         job.work();
         pool.finish();
         poolLock.unlock();
+    };
+    if (call.failure) {
+        finishPool();
+        std::rethrow_exception(call.failure);
     }
-    if (call.failure) std::rethrow_exception(call.failure);
-    const auto drainEnd = profile ? ProfileClock::now() : ProfileClock::time_point{};
 
-    // 3. The handler, on the calling thread, in the broad phase's order.
-    for (const Pair& pair : scratch.pairs) {
-        dContactGeom* contacts;
-        int count;
-        if (pair.gdcontact) {
-            std::size_t offset;
-            SlotBlock& block = scratch.blocks[blockOf(pair.index, offset)];
-            count = block.slots[offset].count;
-            contacts = block.contacts.get() + offset * static_cast<std::size_t>(slotSize);
-        } else {
-            count = pair.count;
-            contacts = scratch.packed.data.get() + pair.index;
+    // 2. The handler, on the calling thread, in the broad phase's order. With the pool, the
+    //    narrow phase is still running: a gdcontact pair not yet collided has this thread collide
+    //    the next chunk of pairs (or, when none is left, wait for the pool thread colliding it), so
+    //    the handler's work overlaps the pool's instead of following it.
+    std::int64_t waitNanos = 0;
+    try {
+        for (const Pair& pair : scratch.pairs) {
+            dContactGeom* contacts;
+            int count;
+            if (pair.gdcontact) {
+                std::size_t offset;
+                SlotBlock& block = scratch.blocks[blockOf(pair.index, offset)];
+                const std::atomic<int>& done = block.slots[offset].count;
+                while ((count = done.load(std::memory_order_acquire)) < 0) {
+                    if (job.workChunk()) continue;
+                    const auto waitStart = profile ? ProfileClock::now() : ProfileClock::time_point{};
+                    for (int spins = 0; (count = done.load(std::memory_order_acquire)) < 0; ++spins)
+                        if (spins >= 64) std::this_thread::yield();
+                    if (profile) waitNanos += nanosSince(waitStart);
+                }
+                contacts = block.contacts.get() + offset * static_cast<std::size_t>(slotSize);
+            } else {
+                count = pair.count;
+                contacts = scratch.packed.data.get() + pair.index;
+            }
+            if (count > 0) handler(data, pair.o1, pair.o2, contacts, count);
         }
-        if (count > 0) handler(data, pair.o1, pair.o2, contacts, count);
+    } catch (...) {
+        finishPool();
+        throw;
     }
+    finishPool();
 
     if (profile) {
         const auto end = ProfileClock::now();
@@ -474,11 +524,16 @@ void spaceCollide(dSpaceID space, int maxContactsPerPair, void* data, ContactHan
         p.otherPairs = scratch.pairs.size() - p.gdcontactPairs;
         p.totalSeconds = seconds(end - callStart);
         p.broadPhaseSeconds = seconds(broadPhaseEnd - callStart);
-        p.drainSeconds = seconds(drainEnd - broadPhaseEnd);
-        p.handlerSeconds = seconds(end - drainEnd);
         const std::int64_t narrow = parallel ? phase.narrowNanos.load() : serialNarrowNanos;
         p.narrowSeconds = 1e-9 * static_cast<double>(narrow);
         p.narrowOnCallerSeconds = 1e-9 * static_cast<double>(parallel ? phase.callerNanos : serialNarrowNanos);
+        const std::int64_t poolStart = phase.poolStartNanos.load();
+        p.poolStartSeconds = poolStart < 0 ? -1.0 : 1e-9 * static_cast<double>(poolStart);
+        // After the broad phase the calling thread ran the handler, with (parallel) its share of
+        // the narrow phase and waits for the pool in between: the handler is what is left.
+        const double afterBroadPhase = seconds(end - broadPhaseEnd);
+        p.drainSeconds = parallel ? p.narrowOnCallerSeconds + 1e-9 * static_cast<double>(waitNanos) : 0.0;
+        p.handlerSeconds = std::max(0.0, afterBroadPhase - p.drainSeconds);
     }
 }
 

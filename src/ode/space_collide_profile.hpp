@@ -18,10 +18,13 @@ struct SpaceCollideProfile {
     double totalSeconds = 0;          ///< the whole call
     double broadPhaseSeconds = 0;     ///< dSpaceCollide: ODE's broad phase, listing the pairs, dCollide's
                                       ///< pairs (and, serial, gdcontact's: see narrowSeconds)
-    double drainSeconds = 0;          ///< after the broad phase until every gdcontact pair was collided
-    double handlerSeconds = 0;        ///< the handler, pair by pair, in the broad phase's order
+    double drainSeconds = 0;          ///< after the broad phase: the calling thread's share of the narrow
+                                      ///< phase and its waits for the pool (0 when serial)
+    double handlerSeconds = 0;        ///< the rest of the call after the broad phase: the handler loop
     double narrowSeconds = 0;         ///< inside gdcontact's collide for its pairs, summed over threads
     double narrowOnCallerSeconds = 0; ///< the part of narrowSeconds on the calling thread
+    double poolStartSeconds = -1;     ///< from the call's start to the first chunk a pool thread took
+                                      ///< (its wake-up latency); −1 when no pool thread took one
 };
 
 /// Turns the recording on or off for every later spaceCollide call (any thread).
