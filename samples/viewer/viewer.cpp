@@ -275,7 +275,8 @@ const char* Viewer::verdictLabel(Verdict::State state) {
         case Verdict::State::Fail: return "FAIL";
         case Verdict::State::Pending: break;
     }
-    return "settling";
+    // The scenes' checks read "does NOT ..." until they are at rest: say that it is not a verdict yet.
+    return "settling, not judged yet";
 }
 
 Verdict Viewer::verdict(int view) {

@@ -107,7 +107,7 @@ public:
     /// Where view `view` is drawn in the window (right of the panel when it is shown).
     Viewport viewport(int view) const;
     Verdict verdict(int view);
-    /// The one-line state of a view the panel and the picture show: "settling", "PASS", "FAIL".
+    /// The state of a view as the panel and the picture show it: "settling, not judged yet", "PASS", "FAIL".
     static const char* verdictLabel(Verdict::State state);
 
     /// Side by side on: both worlds are rebuilt from the start so they begin identical.
