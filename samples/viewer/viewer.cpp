@@ -604,7 +604,7 @@ void Viewer::drawPanel() {
         std::vector<float> v(s.values.begin(), s.values.end());
         char overlay[64];
         std::snprintf(overlay, sizeof overlay, "%.3g %s", v.empty() ? 0.0 : double(v.back()), unit);
-        ImGui::PlotLines(label, v.data(), int(v.size()), 0, overlay, 0.0f, FLT_MAX, ImVec2(0, 40));
+        ImGui::PlotLines(label, v.data(), int(v.size()), 0, overlay, 0.0f, FLT_MAX, ImVec2(0, 34));
     };
     plot("penetration", penetration_, "mm");
     plot("alignment", alignment_, "deg");
