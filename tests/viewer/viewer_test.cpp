@@ -434,3 +434,32 @@ TEST_CASE("the headless command runs side by side with dConvex boxes and says so
         requireShowsBodies(half);
     }
 }
+
+TEST_CASE("contacts behind the resting box show only when drawn through the bodies") {
+    const std::string problem = test::ensureXServer();
+    if (!problem.empty()) return test::reportSkipped(problem);
+    OdeSession ode;
+    ViewerOptions options = testOptions("box_drop");
+    options.labels = false;  // the legend's green ramp would count as contact markers
+    Viewer viewer(options);
+    viewer.simulate(3.0);  // at rest on its four bottom corners
+    REQUIRE(viewer.scene().lastContacts().size() == 4);
+    // Touching contacts are drawn pure green; nothing else in this scene is.
+    auto markerPixels = [&](bool through) {
+        viewer.setContactsThrough(through);
+        CHECK(viewer.snapshot().contactsThrough == through);
+        viewer.draw();
+        const Image image = viewer.capture();
+        long count = 0;
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x) {
+                const std::uint8_t* p = image.pixel(x, y);
+                if (p[1] > 200 && p[0] < 80 && p[2] < 80) ++count;
+            }
+        return count;
+    };
+    const long hidden = markerPixels(false), through = markerPixels(true);
+    INFO(hidden << " marker pixels depth-tested, " << through << " drawn through");
+    CHECK(hidden > 0);            // the corners on the camera's side of the box are seen
+    CHECK(through > hidden + 8);  // the far corner's 6-pixel point at least half shows in addition
+}
