@@ -21,6 +21,7 @@
 // instrumented. The pool's threads sleep on a condition variable between calls.
 #include <gdcontact/ode.hpp>
 
+#include "pair_cache_table.hpp"
 #include "space_collide_profile.hpp"
 #include "state.hpp"
 
@@ -214,6 +215,7 @@ struct Slot {
     // Contacts found, stored (release) by the thread that collided the pair; −1 until then. The
     // handler loop reads it (acquire) to know the pair's contacts are there.
     std::atomic<int> count;
+    PairCache* cache;  // the pair's entry in the adapter's pair cache; nullptr: none
 };
 
 struct SlotBlock {
@@ -276,6 +278,9 @@ struct Call {
     Job& job;  // publishes each gdcontact pair to the pool as soon as it is listed
     bool serial;  // no pool: collide each gdcontact pair at once, as a near callback would
     std::exception_ptr failure;  // thrown inside ODE's broad phase, rethrown after it
+    // This call's hold on the pair cache: each gdcontact pair's entry is found here, on the calling
+    // thread, and handed to whichever thread collides the pair (one thread per pair: never shared).
+    detail::PairCacheTable::Lease& pairCache;
     std::int64_t* serialNarrowNanos = nullptr;  // profiling, serial: gdcontact's collide calls
     std::size_t serialGdcontactPairs = 0;       // profiling, serial: how many
 };
@@ -304,6 +309,7 @@ void addPair(Call& call, dGeomID o1, dGeomID o2) {
         slot.o1 = o1;
         slot.o2 = o2;
         slot.count.store(-1, std::memory_order_relaxed);  // published by Job::ready (release)
+        slot.cache = call.pairCache ? call.pairCache.find(o1, o2) : nullptr;
         scratch.gdcontactPairs = index + 1;
         call.job.ready(index + 1);
         return;
@@ -312,16 +318,18 @@ void addPair(Call& call, dGeomID o1, dGeomID o2) {
     // now on the calling thread, the contacts packed one pair after the other.
     const int room = ours ? call.slotSize : call.maxContacts;
     dContactGeom* out = scratch.packed.reserve(static_cast<std::size_t>(room));
+    PairCache* cache = ours && call.pairCache ? call.pairCache.find(o1, o2) : nullptr;
     int count;
     if (ours && call.serialNarrowNanos) {
         const auto start = ProfileClock::now();
-        count = collide(o1, o2, room, out, sizeof(dContactGeom));
+        count = detail::collideWithPairCache(o1, o2, room, out, sizeof(dContactGeom), cache);
         *call.serialNarrowNanos += nanosSince(start);
         ++call.serialGdcontactPairs;
     } else {
-        count = ours ? collide(o1, o2, room, out, sizeof(dContactGeom))  // never throws
+        count = ours ? detail::collideWithPairCache(o1, o2, room, out, sizeof(dContactGeom), cache)  // never throws
                      : dCollide(o1, o2, room, out, sizeof(dContactGeom));
     }
+    if (cache) call.pairCache.count(*cache);
     scratch.pairs.push_back(Pair{o1, o2, scratch.packed.size, count, false});
     scratch.packed.size += static_cast<std::size_t>(std::max(count, 0));
 }
@@ -362,9 +370,9 @@ void collideRange(void* context, std::size_t begin, std::size_t end) {
         SlotBlock& block = phase.scratch->blocks[blockOf(i, offset)];
         Slot& slot = block.slots[offset];
         // collide() never throws: a failure becomes a dMessage and 0 contacts.
-        const int count = collide(slot.o1, slot.o2, phase.slotSize,
-                                  block.contacts.get() + offset * static_cast<std::size_t>(phase.slotSize),
-                                  sizeof(dContactGeom));
+        const int count = detail::collideWithPairCache(
+            slot.o1, slot.o2, phase.slotSize, block.contacts.get() + offset * static_cast<std::size_t>(phase.slotSize),
+            sizeof(dContactGeom), slot.cache);
         slot.count.store(count, std::memory_order_release);
     }
 }
@@ -458,7 +466,8 @@ void spaceCollide(dSpaceID space, int maxContactsPerPair, void* data, ContactHan
         }
     } poolHeld{holdingPool, parallel};
     if (parallel) holdingPool = true;
-    Call call{scratch, maxContactsPerPair, slotSize, detail::threadCache(), job, !parallel, nullptr};
+    detail::PairCacheTable::Lease pairCache(detail::pairCacheTable());
+    Call call{scratch, maxContactsPerPair, slotSize, detail::threadCache(), job, !parallel, nullptr, pairCache};
     std::int64_t serialNarrowNanos = 0;
     if (profile && !parallel) call.serialNarrowNanos = &serialNarrowNanos;
 
@@ -494,14 +503,15 @@ void spaceCollide(dSpaceID space, int maxContactsPerPair, void* data, ContactHan
             if (pair.gdcontact) {
                 std::size_t offset;
                 SlotBlock& block = scratch.blocks[blockOf(pair.index, offset)];
-                const std::atomic<int>& done = block.slots[offset].count;
-                while ((count = done.load(std::memory_order_acquire)) < 0) {
+                const Slot& slot = block.slots[offset];
+                while ((count = slot.count.load(std::memory_order_acquire)) < 0) {
                     if (job.workChunk()) continue;
                     const auto waitStart = profile ? ProfileClock::now() : ProfileClock::time_point{};
-                    for (int spins = 0; (count = done.load(std::memory_order_acquire)) < 0; ++spins)
+                    for (int spins = 0; (count = slot.count.load(std::memory_order_acquire)) < 0; ++spins)
                         if (spins >= 64) std::this_thread::yield();
                     if (profile) waitNanos += nanosSince(waitStart);
                 }
+                if (slot.cache) pairCache.count(*slot.cache);
                 contacts = block.contacts.get() + offset * static_cast<std::size_t>(slotSize);
             } else {
                 count = pair.count;
