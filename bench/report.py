@@ -815,7 +815,15 @@ how far anything still moved while measured.
   benchmark targets adds a few minutes on 2 cores); `scripts/bench --quick` for a trial run (its report goes to the build
   directory).
 """
-    with open(os.path.join(args.docs, "benchmarks.md"), "w") as f:
+    # The "Big worlds" section comes from its own command (scripts/bench --big, bench/big_report.py):
+    # kept as it is.
+    path = os.path.join(args.docs, "benchmarks.md")
+    big_begin, big_end = "<!-- big-worlds: begin", "<!-- big-worlds: end -->"
+    if os.path.exists(path):
+        old = open(path).read()
+        if big_begin in old and big_end in old:
+            doc = doc.rstrip("\n") + "\n\n" + old[old.index(big_begin):old.index(big_end) + len(big_end)] + "\n"
+    with open(path, "w") as f:
         f.write(doc)
 
 
