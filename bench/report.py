@@ -664,6 +664,7 @@ switched on only around each contender's cycled calls (the driver's loop, measur
 7. [The speed/accuracy trade](#the-speedaccuracy-trade)
 8. [Scene cost](#scene-cost)
 9. [Method](#method)
+10. [Big worlds](#big-worlds) (its own command: `scripts/bench --big`)
 
 ## Targets
 
