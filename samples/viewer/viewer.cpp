@@ -130,6 +130,7 @@ int Viewer::windowHeight() const {
 void Viewer::loadScene(const std::string& name) {
     scenes::SceneOptions sceneOptions;
     sceneOptions.scripted = options_.scripted;
+    sceneOptions.convexBoxes = options_.convexBoxes;
     if (options_.method) sceneOptions.method = *options_.method;
     drag_.forget();
     shapes_.clear();

@@ -44,6 +44,7 @@ struct ViewerOptions {
     bool scripted = false;   // let the scene's scripted user act (builder, remover, push)
     bool visible = true;     // show the window (false for tests)
     bool fit = false;        // frame the bodies as they are at the end before the screenshot
+    bool convexBoxes = false;  // the scenes' boxes as dConvex (SceneOptions::convexBoxes)
 };
 
 /// Per-frame timings of the loop (seconds of wall-clock time).
