@@ -139,6 +139,12 @@ def headline(scene, summary):
         return ""
 
 
+def has_messages(results, scene, method, boxes):
+    """Did ODE print anything during the run (scripts/run keeps its stderr only when not empty)?"""
+    path = os.path.join(results, f"{scene}_{method}_{boxes}.stderr")
+    return os.path.exists(path) and os.path.getsize(path) > 0
+
+
 def step_ms(summary):
     return summary["collision_ms"] + summary["solver_ms"]
 
@@ -204,6 +210,12 @@ def summary_section(runs, results):
     if any(key[1] == "ode" and not runs[key][0]["success"] for key in runs):
         notes.append("†: ODE's run failed its check, so it simulated another world (an unbuilt tower, a fallen "
                      "wall) with other contacts; that ratio is not like for like.")
+    messages = [f"{configuration_label(runs, scene, boxes)} ({METHOD_LABEL.get(method, method)})"
+                for scene, boxes in scene_configurations(runs) for method in methods_of(runs, scene, boxes)
+                if has_messages(results, scene, method, boxes)]
+    if messages:
+        # A solver message often comes with a kick the verdict alone does not show.
+        notes.append("ODE printed messages during " + ", ".join(messages) + ": see *Messages from ODE* at the end.")
     animations = [scene for scene in SCENES if os.path.exists(os.path.join(results, f"{scene}_animation.gif"))]
     skipped = os.path.join(results, "animations.txt")
     if animations:
@@ -258,11 +270,6 @@ def identical_runs(runs, scene, method):
     skip = {"collision_seconds", "solver_seconds"}
     columns = [c for c in box[1] if c not in skip]
     return bool(columns) and all(box[1][c] == convex[1].get(c) for c in columns)
-
-
-def solver_sentence(summary):
-    stepper = {"world": "dWorldStep", "quick": f"dWorldQuickStep {summary['iterations']} iterations"}
-    return f"{stepper.get(summary['stepper'], summary['stepper'])}, dt {summary['dt']} s"
 
 
 # ---- plots

@@ -1,7 +1,7 @@
 // The viewer as a person and as the docs use it, in a real window (Xvfb + Mesa llvmpipe, started
 // by the test): every scene renders to a non-blank frame showing its bodies; dragging a body with
 // the mouse moves it towards the cursor; ctrl-click removes a brick; the headless command writes
-// a screenshot of each scene.
+// a screenshot of each scene, and records every K-th frame as PNG.
 #include "image.hpp"
 #include "ode_session.hpp"
 #include "viewer.hpp"
@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 using namespace gdc;
 using namespace gdc::viewer;
@@ -163,4 +164,32 @@ TEST_CASE("the headless command writes a screenshot of each scene") {
     }
     // Bad input is refused with an error, not a crash.
     CHECK(std::system((std::string("\"") + GDCONTACT_VIEWER_EXECUTABLE + "\" --scene no_such_scene --frames 1 --hidden 2> /dev/null").c_str()) != 0);
+}
+
+TEST_CASE("the headless command records every K-th frame and the last as PNG") {
+    const std::string problem = test::ensureXServer();
+    if (!problem.empty()) return test::reportSkipped(problem);
+    const std::string directory = std::string(GDCONTACT_VIEWER_TEST_OUTPUT) + "/viewer_recording";
+    const std::string viewer = std::string("\"") + GDCONTACT_VIEWER_EXECUTABLE + "\"";
+    std::system(("rm -rf \"" + directory + "\"").c_str());
+    // 25 frames, every 10th: frames 0, 10, 20 and the last (24), as frame_0000.png ... frame_0003.png.
+    const std::string command = viewer + " --scene box_drop --frames 25 --record-every 10 --record-dir \"" + directory +
+                                "\" --size 480x270 --hidden --no-panel > /dev/null";
+    INFO(command);
+    REQUIRE(std::system(command.c_str()) == 0);
+    std::vector<Image> frames;
+    for (int i = 0; i < 4; ++i) {
+        char name[32];
+        std::snprintf(name, sizeof name, "/frame_%04d.png", i);
+        frames.push_back(readPng(directory + name));
+        CHECK(frames.back().width == 480);
+        CHECK(frames.back().height == 270);
+        requireShowsBodies(frames.back());
+    }
+    CHECK_THROWS(readPng(directory + "/frame_0004.png"));
+    // The box falls between the first and the last recorded frame: the pictures differ.
+    CHECK(frames.front().rgb != frames.back().rgb);
+    // Recording needs a folder and a frame count.
+    CHECK(std::system((viewer + " --scene box_drop --frames 5 --record-every 2 --hidden 2> /dev/null").c_str()) != 0);
+    CHECK(std::system((viewer + " --scene box_drop --record-every 2 --record-dir x --hidden 2> /dev/null").c_str()) != 0);
 }
