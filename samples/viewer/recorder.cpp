@@ -16,6 +16,22 @@ namespace {
 // recording of N frames ends where a --frames N --screenshot run does.
 constexpr double kFrameSeconds = 1.0 / 60.0;
 
+// Every corner of the box [low, high] in front of the camera and inside the image, a margin
+// (a fraction of the image) clear of its edges.
+bool fits(const OrbitCamera& camera, const Vec3& low, const Vec3& high, int width, int height) {
+    constexpr double kMargin = 0.04;
+    const Vec3 forward = (camera.target() - camera.eye()).normalized();
+    for (int i = 0; i < 8; ++i) {
+        const Vec3 corner(i & 1 ? high.x() : low.x(), i & 2 ? high.y() : low.y(), i & 4 ? high.z() : low.z());
+        if ((corner - camera.eye()).dot(forward) <= camera.nearPlane()) return false;
+        const Eigen::Vector2d pixel = camera.project(corner, width, height);
+        if (pixel.x() < kMargin * width || pixel.x() > (1.0 - kMargin) * width || pixel.y() < kMargin * height ||
+            pixel.y() > (1.0 - kMargin) * height)
+            return false;
+    }
+    return true;
+}
+
 // Frames the camera on everything the bodies have covered so far, down to the ground (z = 0,
 // Scene::addGroundPlane), so a falling box keeps its landing spot in view and a growing tower its
 // top. The box only grows, so the camera moves only when a body leaves the view, and never back.
@@ -30,14 +46,20 @@ public:
         low_ = known_ ? low_.cwiseMin(low) : low;
         high_ = known_ ? high_.cwiseMax(high) : high;
         known_ = true;
-        viewer.camera().frame(low_, high_);
-        // frame() fits the box's bounding sphere into the vertical field of view; a wide frame
-        // has room to spare beside it, so come a little closer.
-        viewer.camera().zoom(kCloser);
+        // frame() fits the box's bounding sphere into the vertical field of view, which leaves a
+        // wide image mostly empty; come closer while the box's corners still fit the image.
+        OrbitCamera& camera = viewer.camera();
+        camera.frame(low_, high_);
+        const int width = viewer.windowWidth(), height = viewer.windowHeight();
+        for (int i = 0; i < 40; ++i) {
+            OrbitCamera closer = camera;
+            closer.zoom(0.97);
+            if (!fits(closer, low_, high_, width, height)) break;
+            camera = closer;
+        }
     }
 
 private:
-    static constexpr double kCloser = 0.8;
     bool known_ = false;
     Vec3 low_, high_;
 };
