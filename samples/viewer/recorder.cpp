@@ -47,10 +47,12 @@ public:
         high_ = known_ ? high_.cwiseMax(high) : high;
         known_ = true;
         // frame() fits the box's bounding sphere into the vertical field of view, which leaves a
-        // wide image mostly empty; come closer while the box's corners still fit the image.
+        // wide image mostly empty; come closer while the box's corners still fit the image (and
+        // first back off should they not, which the margin can cause).
         OrbitCamera& camera = viewer.camera();
         camera.frame(low_, high_);
         const int width = viewer.windowWidth(), height = viewer.windowHeight();
+        for (int i = 0; i < 40 && !fits(camera, low_, high_, width, height); ++i) camera.zoom(1.0 / 0.97);
         for (int i = 0; i < 40; ++i) {
             OrbitCamera closer = camera;
             closer.zoom(0.97);
