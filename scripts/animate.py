@@ -120,10 +120,13 @@ def main():
     failures = []
     with concurrent.futures.ThreadPoolExecutor(max_workers=arguments.jobs) as pool:
         futures = {}
-        for scene, boxes, runs, total, every in jobs:
-            for method in runs:
-                futures[(scene, method)] = pool.submit(run_viewer, arguments.viewer, arguments.results, scene, method,
-                                                       boxes, total, every, arguments.size)
+        # Longest first, by the headless run's own time (steps × ms per step), so that the two
+        # workers finish together rather than one waiting on a long recording started last.
+        queue = [(summary["steps"] * (summary["collision_ms"] + summary["solver_ms"]), scene, boxes, method, total, every)
+                 for scene, boxes, runs, total, every in jobs for method, summary in runs.items()]
+        for _, scene, boxes, method, total, every in sorted(queue, reverse=True):
+            futures[(scene, method)] = pool.submit(run_viewer, arguments.viewer, arguments.results, scene, method,
+                                                   boxes, total, every, arguments.size)
         recorded = {key: future.result() for key, future in futures.items()}
 
     for scene, boxes, runs, total, every in jobs:
