@@ -486,10 +486,12 @@ def main():
                "(a Bullet-style persistent manifold fed by libccd's MPR, the paper's baseline), **ODE 0.16.2 "
                "native** (`dCollide`: dBoxBox / dBoxPlane for dBox, libccd for dConvex pairs).\n")
     out.extend(summary_section(runs, results))
+    animated = any(name.endswith("_animation.gif") for name in os.listdir(results))
     out.append("Below, per scene: a table of the measures that matter for it (definitions in docs/measures.md; "
                "taken after the scene declares its bodies at rest; penetration is the geometric overlap of every "
                "touching pair by the separating-axis oracle, not what a method reports), the scene's own verdict "
-               "lines, a plot and an animation. Every measure of every run is in the last section.\n")
+               f"lines, {'a plot and an animation' if animated else 'a plot'}. Every measure of every run is in the "
+               "last section.\n")
 
     # ---- box drop
     extra = []
