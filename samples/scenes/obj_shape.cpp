@@ -96,7 +96,7 @@ ObjShape parseObjShape(const std::string& text, ObjLayout layout, double scale, 
     }
 
     ObjShape result;
-    std::vector<std::shared_ptr<const Polytope>> hulls;
+    std::vector<std::pair<std::shared_ptr<const Polytope>, Vec3>> hulls;  // each about its centroid, and where that is
     for (const auto& [name, indices] : parts) {
         std::vector<Vec3> points;
         for (int index : indices) {
@@ -106,23 +106,23 @@ ObjShape parseObjShape(const std::string& text, ObjLayout layout, double scale, 
                                " but the file has " + std::to_string(vertexCount));
             points.push_back(scale * vertexAt(attrib, index));
         }
-        hulls.push_back(hullOf(points, name, sourceName));
+        hulls.push_back(centredOnCentroid(*hullOf(points, name, sourceName)));
         result.partNames.push_back(name);
     }
 
     // The common centre of mass at uniform density becomes the origin of the parts' frame.
     Vec3 centre = Vec3::Zero();
-    for (const auto& hull : hulls) {
+    for (const auto& [hull, centroid] : hulls) {
         result.volume += hull->volume();
-        centre += hull->volume() * hull->centroid();
+        centre += hull->volume() * centroid;
     }
     centre /= result.volume;
-    for (const auto& hull : hulls) {
+    for (const auto& [hull, centroid] : hulls) {
         PlacedPart part;
         part.shape = hull;
-        part.offset.position = -centre;
+        part.offset.position = centroid - centre;
         result.parts.push_back(part);
-        for (const Vec3& v : hull->vertices()) result.radius = std::max(result.radius, (v - centre).norm());
+        for (const Vec3& v : hull->vertices()) result.radius = std::max(result.radius, part.offset.apply(v).norm());
     }
     return result;
 }

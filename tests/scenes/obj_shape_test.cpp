@@ -130,7 +130,10 @@ TEST_CASE("the sample maul OBJ loads as its handle and head, of the volumes its 
     CHECK(shape.parts[0].shape->volume() == Approx(0.03 * 0.03 * 0.3).epsilon(1e-9));
     CHECK(shape.parts[1].shape->vertices().size() == 6);
     CHECK(shape.parts[1].shape->volume() == Approx(0.16 * 0.08 / 2 * 0.06).epsilon(1e-9));
-    // The origin is the common centre of mass: the volume-weighted part centroids cancel.
+    // Each part is made about its own centroid (ODE wants a dConvex's origin inside it) ...
+    for (const PlacedPart& part : shape.parts) CHECK(part.shape->centroid().norm() < 1e-12);
+    // ... and the origin of their frame is the common centre of mass: the volume-weighted part
+    // centroids cancel.
     Vec3 moment = Vec3::Zero();
     for (const PlacedPart& part : shape.parts) moment += part.shape->volume() * part.offset.apply(part.shape->centroid());
     CHECK(moment.norm() < 1e-15);
