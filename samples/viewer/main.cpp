@@ -1,10 +1,12 @@
 // viewer — interactive (or headless) view of the paper's scenes.
 //   viewer [--scene NAME] [--method gdc|tracking|ode] [--size WxH]
 //          [--frames N [--screenshot FILE.png [--fit]] [--realtime]] [--no-panel] [--no-contacts] [--scripted]
+//          [--obj FILE.obj [--obj-hull] [--obj-scale S]]
 #include "viewer.hpp"
 
 #include <ode/ode.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -31,10 +33,15 @@ void usage(std::FILE* out) {
                  "  --scripted          let the scene's scripted user act (builder, remover, push)\n"
                  "  --fit               with --screenshot: frame the bodies where they are at the end\n"
                  "  --hidden            do not show the window\n"
+                 "  --obj FILE          a shape of your own for d (drop) and t (throw): each object of the\n"
+                 "                      OBJ file one convex part (V-HACD/CoACD output), or with --obj-hull\n"
+                 "                      the hull of the whole file; --obj-scale S multiplies its coordinates\n"
                  "\n"
                  "mouse: left-drag a body to pull it; ctrl/shift+click removes a brick; left/right-drag\n"
                  "elsewhere orbits, middle-drag pans, wheel zooms. keys: space pause, s step, r reset,\n"
-                 "p push, c contacts, f fit view, h hide panel, esc quit\n");
+                 "p push, c contacts, f fit view, h hide panel, esc quit;\n"
+                 "d drop at the cursor, t throw from the camera (shift+right-drag: throw by flick), 1-4 box /\n"
+                 "rock / composite / OBJ, i inspector, w wireframe, b bounding boxes\n");
 }
 
 }  // namespace
@@ -69,6 +76,15 @@ int main(int argc, char** argv) {
             else if (arg == "--scripted") options.scripted = true;
             else if (arg == "--hidden") options.visible = false;
             else if (arg == "--fit") options.fit = true;
+            else if (arg == "--obj") options.obj = value();
+            else if (arg == "--obj-hull") options.objHull = true;
+            else if (arg == "--obj-scale") {
+                const std::string text = value();
+                char* end = nullptr;
+                options.objScale = std::strtod(text.c_str(), &end);
+                if (*end != '\0' || !(options.objScale > 0.0) || !std::isfinite(options.objScale))
+                    throw std::invalid_argument("--obj-scale wants a positive number, got '" + text + "'");
+            }
             else if (arg == "--help" || arg == "-h") {
                 usage(stdout);
                 return 0;

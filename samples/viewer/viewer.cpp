@@ -29,6 +29,8 @@ constexpr double kHeadlessFrameSeconds = 1.0 / 60.0;  // simulated time per head
 constexpr double kMaxBacklogSteps = 5.0;  // behind by more, the simulation runs slower than real time
 constexpr std::size_t kPlotSamples = 400;
 constexpr double kPanelWidth = 340.0;  // pixels, margin included
+constexpr double kSlowestFlick = 0.5;  // m/s: slower, a shift+right release is no throw
+constexpr double kFastestThrow = 40.0;  // m/s: the throw speed slider's top
 const scenes::Method kMethods[] = {scenes::Method::Gdcontact, scenes::Method::Tracking, scenes::Method::Ode};
 const char* const kMethodLabels[] = {"gdcontact", "contact tracking", "ODE native"};
 
@@ -102,6 +104,10 @@ Viewer::Viewer(const ViewerOptions& options) : options_(options), camera_(Vec3::
     imguiReady_ = true;
 
     loadScene(options.scene);
+    if (!options.obj.empty() &&
+        !interaction_.loadObj(options.obj, options.objHull ? scenes::ObjLayout::Hull : scenes::ObjLayout::PartPerObject,
+                              options.objScale))
+        throw std::runtime_error(interaction_.objStatus());
 }
 
 Viewer::~Viewer() {
@@ -238,6 +244,26 @@ bool Viewer::removeAt(double x, double y) {
 
 void Viewer::push(double seconds) { pushRemaining_ = std::max(pushRemaining_, seconds); }
 
+dBodyID Viewer::dropAt(double x, double y) {
+    refreshShapes();
+    // Within ten times the camera's distance: farther, the body would land out of sight.
+    dBodyID body = interaction_.drop(*scene_, shapes_, camera_.rayThroughPixel(x, y, windowWidth(), windowHeight()),
+                                     10.0 * camera_.distance());
+    refreshShapes();
+    return body;
+}
+
+dBodyID Viewer::throwAt(double x, double y, double speed) {
+    dBodyID body = interaction_.throwAlong(*scene_, camera_.rayThroughPixel(x, y, windowWidth(), windowHeight()), speed);
+    refreshShapes();
+    return body;
+}
+
+std::optional<Inspection> Viewer::inspectAt(double x, double y) {
+    refreshShapes();
+    return inspectAlong(*scene_, shapes_, camera_.rayThroughPixel(x, y, windowWidth(), windowHeight()));
+}
+
 FrameInput Viewer::snapshot() {
     refreshShapes();
     FrameInput in;
@@ -265,13 +291,17 @@ void Viewer::buildPanel() {
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
     if (showPanel_) drawPanel();
+    if (interaction_.inspector)
+        interaction_.inspectorWindow(*scene_, shapes_, camera_, lastX_, lastY_, windowWidth(), windowHeight());
     ImGui::Render();  // only builds vertex lists; the GL calls come in RenderDrawData
 }
 
 void Viewer::draw() {
     const FrameInput in = snapshot();
     buildPanel();
-    renderer_.render(in);
+    std::vector<DrawShape> planes;
+    renderer_.render(rendererInput(in, interaction_.debug, planes));
+    drawDebugOverlay(in, interaction_.debug);
     ImGui_ImplOpenGL2_RenderDrawData(ImGui::GetDrawData());
 }
 
@@ -365,6 +395,7 @@ void Viewer::drawPanel() {
     plot("drift", drift_, "mm");
     plot("collision", collisionMs_, "ms");
     plot("solver", solverMs_, "ms");
+    interaction_.panelSection();
     ImGui::TextDisabled("drag: pull body   ctrl+click: remove brick");
     ImGui::TextDisabled("right drag: orbit   middle: pan   wheel: zoom");
     ImGui::TextDisabled("space pause  s step  r reset  p push");
@@ -420,7 +451,9 @@ void Viewer::interactiveLoop(int frameLimit, bool vsync) {
         const auto drawStart = Clock::now();
         times_.snapshotSeconds += std::chrono::duration<double>(drawStart - frameStart).count();
         // Drawing reads only the copies made above.
-        renderer_.render(in);
+        std::vector<DrawShape> planes;
+        renderer_.render(rendererInput(in, interaction_.debug, planes));
+        drawDebugOverlay(in, interaction_.debug);
         ImGui_ImplOpenGL2_RenderDrawData(ImGui::GetDrawData());
         present();
         times_.drawSeconds += secondsSince(drawStart);
@@ -498,6 +531,13 @@ void Viewer::onMouseButton(GLFWwindow* window, int button, int action, int mods)
     v.lastY_ = y;
     if (action == GLFW_RELEASE) {
         if (v.gesture_ == Gesture::Drag) v.release();
+        if (v.gesture_ == Gesture::Flick) {
+            v.flick_.move(x, y, glfwGetTime());
+            // A release without motion is no throw; a wild flick is held to the panel's top speed.
+            const double speed = flickSpeed(v.camera_, v.windowHeight(), v.flick_.velocity());
+            if (speed >= kSlowestFlick) v.throwAt(x, y, std::min(speed, kFastestThrow));
+            v.flick_.end();
+        }
         v.gesture_ = Gesture::None;
         return;
     }
@@ -508,6 +548,9 @@ void Viewer::onMouseButton(GLFWwindow* window, int button, int action, int mods)
         } else {
             v.gesture_ = v.grab(x, y) ? Gesture::Drag : Gesture::Orbit;
         }
+    } else if (button == GLFW_MOUSE_BUTTON_RIGHT && (mods & GLFW_MOD_SHIFT)) {
+        v.gesture_ = Gesture::Flick;  // a throw: the cursor's speed at release sets the body's
+        v.flick_.begin(x, y, glfwGetTime());
     } else if (button == GLFW_MOUSE_BUTTON_RIGHT) {
         v.gesture_ = Gesture::Orbit;
     } else if (button == GLFW_MOUSE_BUTTON_MIDDLE) {
@@ -525,6 +568,7 @@ void Viewer::onCursor(GLFWwindow* window, double x, double y) {
         case Gesture::Orbit: v.camera_.orbit(-3.0 * dx / height, 3.0 * dy / height); break;
         case Gesture::Pan: v.camera_.pan(-dx / height, dy / height); break;
         case Gesture::Drag: v.dragTo(x, y); break;
+        case Gesture::Flick: v.flick_.move(x, y, glfwGetTime()); break;
         case Gesture::None: break;
     }
 }
@@ -552,6 +596,14 @@ void Viewer::onKey(GLFWwindow* window, int key, int, int action, int) {
         case GLFW_KEY_C: v.showContacts_ = !v.showContacts_; break;
         case GLFW_KEY_H: v.showPanel_ = !v.showPanel_; break;
         case GLFW_KEY_F: v.fitCamera(); break;
+        case GLFW_KEY_D: v.dropAt(v.lastX_, v.lastY_); break;
+        case GLFW_KEY_T: v.throwAt(v.lastX_, v.lastY_, v.interaction_.throwSpeed); break;
+        case GLFW_KEY_1: case GLFW_KEY_2: case GLFW_KEY_3: case GLFW_KEY_4:
+            v.interaction_.kind = kSpawnKinds[key - GLFW_KEY_1];
+            break;
+        case GLFW_KEY_I: v.interaction_.inspector = !v.interaction_.inspector; break;
+        case GLFW_KEY_W: v.interaction_.debug.wireframe = !v.interaction_.debug.wireframe; break;
+        case GLFW_KEY_B: v.interaction_.debug.bounds = !v.interaction_.debug.bounds; break;
         default: break;
     }
 }

@@ -11,6 +11,7 @@
 
 #include "camera.hpp"
 #include "image.hpp"
+#include "interaction.hpp"
 #include "renderer.hpp"
 #include "scene_shapes.hpp"
 #include "spring_drag.hpp"
@@ -44,6 +45,9 @@ struct ViewerOptions {
     bool scripted = false;   // let the scene's scripted user act (builder, remover, push)
     bool visible = true;     // show the window (false for tests)
     bool fit = false;        // frame the bodies as they are at the end before the screenshot
+    std::string obj;         // OBJ file whose shape the drop and throw add (--obj)
+    bool objHull = false;    // the whole file as one convex hull, not one part per object
+    double objScale = 1.0;   // OBJ coordinates × this = metres
 };
 
 /// Per-frame timings of the loop (seconds of wall-clock time).
@@ -93,6 +97,14 @@ public:
     bool removeAt(double x, double y);
     /// The paper's downward push on the top object, for `seconds` of simulated time.
     void push(double seconds = 0.5);
+    /// Adds a body of interaction().kind over the point under the cursor (key d), or in front of
+    /// the camera flying along the cursor ray at `speed` m/s (key t, shift+right flick). Returns
+    /// the new body, null when nothing is under the cursor to drop onto.
+    dBodyID dropAt(double x, double y);
+    dBodyID throwAt(double x, double y, double speed);
+    /// The body under the cursor with its mass, velocities and contacts (the inspector window).
+    std::optional<Inspection> inspectAt(double x, double y);
+    Interaction& interaction() { return interaction_; }
 
     const OrbitCamera& camera() const { return camera_; }
     OrbitCamera& camera() { return camera_; }
@@ -144,7 +156,9 @@ private:
     FrameTimes times_;
 
     // mouse state for camera gestures
-    enum class Gesture { None, Orbit, Pan, Drag } gesture_ = Gesture::None;
+    Interaction interaction_;
+    FlickTracker flick_;
+    enum class Gesture { None, Orbit, Pan, Drag, Flick } gesture_ = Gesture::None;
     double lastX_ = 0.0, lastY_ = 0.0;
 
     // live plots (last few seconds of each measure)

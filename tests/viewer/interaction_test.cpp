@@ -1,0 +1,350 @@
+// Dropping, throwing, inspecting and debug drawing (samples/viewer/interaction): the maths on its
+// own, then as a person uses it in a real window (Xvfb + Mesa llvmpipe, started by the test).
+#include "interaction.hpp"
+#include "image.hpp"
+#include "ode_session.hpp"
+#include "viewer.hpp"
+#include "x_server.hpp"
+
+#include <catch2/catch.hpp>
+#include <ode/ode.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+using namespace gdc;
+using namespace gdc::viewer;
+
+namespace {
+
+using gdc::testing::OdeSession;
+
+const std::string kMaul = std::string(GDCONTACT_SOURCE_DIR) + "/samples/viewer/assets/maul.obj";
+
+ViewerOptions testOptions(const std::string& scene) {
+    ViewerOptions options;
+    options.scene = scene;
+    options.width = 480;
+    options.height = 270;
+    options.visible = false;
+    options.panel = false;
+    return options;
+}
+
+Vec3 positionOf(dBodyID body) {
+    const dReal* p = dBodyGetPosition(body);
+    return Vec3(p[0], p[1], p[2]);
+}
+
+Vec3 velocityOf(dBodyID body) {
+    const dReal* v = dBodyGetLinearVel(body);
+    return Vec3(v[0], v[1], v[2]);
+}
+
+const scenes::Body& bodyOf(Viewer& viewer, dBodyID id) {
+    for (const auto& body : viewer.scene().bodies())
+        if (body.body == id) return body;
+    FAIL("no such body in the scene");
+    throw;
+}
+
+/// A point on the ground z = 0, beside the scene's bodies (along the camera's right, so it is
+/// in view), and the pixel that shows it.
+Vec3 groundBeside(Viewer& viewer, double offset, Eigen::Vector2d& pixel) {
+    const OrbitCamera& camera = viewer.camera();
+    const Vec3 forward = camera.target() - camera.eye();
+    const Vec3 right = forward.cross(Vec3::UnitZ()).normalized();
+    Vec3 ground = camera.target() + offset * right;
+    ground.z() = 0.0;
+    pixel = camera.project(ground, viewer.windowWidth(), viewer.windowHeight());
+    return ground;
+}
+
+/// Pixels of the bounding-box cyan (0.1, 0.95, 0.95) and nothing else in the frame.
+long cyanPixels(const Image& image) {
+    long count = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const std::uint8_t* p = image.pixel(x, y);
+            count += p[0] < 60 && p[1] > 220 && p[2] > 220;
+        }
+    return count;
+}
+
+}  // namespace
+
+// ---- the maths, without a window -------------------------------------------------------------
+
+TEST_CASE("a flick's velocity is the cursor's motion over its last moments") {
+    FlickTracker flick;
+    CHECK_FALSE(flick.active());
+    flick.window = 0.125;  // and times that binary fractions hold exactly
+    flick.begin(0, 0, 0.0);
+    CHECK(flick.velocity() == Eigen::Vector2d::Zero());  // one sample: no motion yet
+    flick.move(10, 0, 0.125);
+    CHECK(flick.velocity().x() == Approx(80.0));
+    flick.move(30, -20, 0.25);
+    flick.move(60, -40, 0.375);
+    // Only the last 0.125 s counts: from the sample at 0.25 s, (60 − 30, −40 + 20) px over 0.125 s.
+    CHECK(flick.velocity().x() == Approx(240.0));
+    CHECK(flick.velocity().y() == Approx(-160.0));
+    flick.end();
+    CHECK_FALSE(flick.active());
+}
+
+TEST_CASE("a flick's speed is the cursor's speed carried to the target's distance") {
+    OrbitCamera camera(Vec3::UnitZ());
+    camera.frame(Vec3(-1, -1, 0), Vec3(1, 1, 1));
+    const int width = 640, height = 480;
+    // One metre across the view at the target's distance, as the camera projects it.
+    const Vec3 forward = (camera.target() - camera.eye()).normalized();
+    const Vec3 right = forward.cross(camera.up()).normalized();
+    const double pixelsPerMetre = (camera.project(camera.target() + right, width, height) -
+                                   camera.project(camera.target(), width, height)).norm();
+    CHECK(flickSpeed(camera, height, Eigen::Vector2d(pixelsPerMetre, 0.0)) == Approx(1.0).epsilon(1e-9));
+    CHECK(flickSpeed(camera, height, Eigen::Vector2d(0.0, -3.0 * pixelsPerMetre)) == Approx(3.0).epsilon(1e-9));
+}
+
+TEST_CASE("a throw starts on the cursor ray in front of the eye and moves along it") {
+    const Ray ray{Vec3(1, 2, 3), Vec3(1, -2, -2).normalized()};
+    const Launch launch = launchAlong(ray, 0.25, 12.0);
+    CHECK((launch.position - ray.at(0.5)).norm() < 1e-12);
+    CHECK((launch.velocity - 12.0 * ray.direction).norm() < 1e-12);
+}
+
+TEST_CASE("the shapes to add are centred on their centre of mass and as large as asked") {
+    const SpawnShape box = makeSpawnBox(0.5);
+    CHECK(box.radius == Approx(0.5).epsilon(1e-12));
+    REQUIRE(box.parts.size() == 1);
+    CHECK(box.parts[0].isBox);
+    const SpawnShape rock = makeSpawnRock(0.5, 7);
+    CHECK(rock.radius <= 0.5 * 2.0);  // points within 0.5 of the origin, recentred on the hull's centroid
+    CHECK(rock.parts[0].shape->vertices().size() >= 4);
+    // The same seed gives the same rock, another seed another one.
+    CHECK(makeSpawnRock(0.5, 7).parts[0].shape->vertices() == rock.parts[0].shape->vertices());
+    CHECK(makeSpawnRock(0.5, 8).parts[0].shape->vertices() != rock.parts[0].shape->vertices());
+    const SpawnShape composite = makeSpawnComposite(0.5);
+    CHECK(composite.parts.size() == 2);
+    for (const SpawnShape* shape : {&box, &rock, &composite}) {
+        INFO(shape->name);
+        Vec3 moment = Vec3::Zero();
+        for (const auto& part : shape->parts) moment += part.shape->volume() * part.offset.apply(part.shape->centroid());
+        CHECK(moment.norm() < 1e-12);
+    }
+}
+
+// ---- in a window ------------------------------------------------------------------------------
+
+TEST_CASE("dropping a box at the cursor adds one body over the ground point under it") {
+    const std::string problem = test::ensureXServer();
+    if (!problem.empty()) return test::reportSkipped(problem);
+    OdeSession ode;
+    Viewer viewer(testOptions("box_drop"));
+    viewer.simulate(0.1);
+    const std::size_t count = viewer.scene().bodies().size();
+    Eigen::Vector2d pixel;
+    const Vec3 ground = groundBeside(viewer, 1.2, pixel);
+    REQUIRE(pixel.x() > 0);
+    REQUIRE(pixel.x() < viewer.windowWidth());
+
+    viewer.interaction().kind = SpawnKind::Box;
+    const dBodyID dropped = viewer.dropAt(pixel.x(), pixel.y());
+    REQUIRE(dropped != nullptr);
+    CHECK(viewer.scene().bodies().size() == count + 1);
+    const scenes::Body& body = bodyOf(viewer, dropped);
+    CHECK(body.removable);
+    CHECK_FALSE(body.measured);
+    // Over the point under the cursor (the ground there is clear), its bounding sphere 5 % of its
+    // radius above the ground.
+    const Vec3 at = positionOf(dropped);
+    INFO("dropped at " << at.transpose() << ", ground point " << ground.transpose());
+    CHECK((at.head<2>() - ground.head<2>()).norm() < 1e-6);
+    CHECK(at.z() == Approx(1.05 * body.radius).epsilon(1e-9));
+    CHECK(velocityOf(dropped).norm() == 0.0);
+
+    // It falls and comes to rest on the ground, by the scene's own contacts.
+    viewer.simulate(1.5);
+    const Vec3 rest = positionOf(dropped);
+    CHECK(rest.z() < at.z());
+    CHECK(rest.z() > 0.0);
+    CHECK(velocityOf(dropped).norm() < 0.05);
+}
+
+TEST_CASE("dropping onto a body puts the new one above it, and on the sky adds nothing") {
+    const std::string problem = test::ensureXServer();
+    if (!problem.empty()) return test::reportSkipped(problem);
+    OdeSession ode;
+    Viewer viewer(testOptions("box_drop"));
+    viewer.simulate(2.0);  // the box lies on the ground
+    const dBodyID box = viewer.scene().bodies().front().body;
+    const Eigen::Vector2d pixel = viewer.camera().project(positionOf(box), viewer.windowWidth(), viewer.windowHeight());
+    double top = -1e9;  // the box's highest vertex
+    for (const auto& part : viewer.scene().bodies().front().parts)
+        for (const Vec3& v : part.shape->vertices()) top = std::max(top, scenes::worldHeight(part, v));
+    const dBodyID dropped = viewer.dropAt(pixel.x(), pixel.y());
+    REQUIRE(dropped != nullptr);
+    CHECK(positionOf(dropped).z() - bodyOf(viewer, dropped).radius > top);
+
+    // The top row looks along the horizon: ground far out of sight, where nothing is dropped.
+    const std::size_t count = viewer.scene().bodies().size();
+    CHECK(viewer.dropAt(0.5 * viewer.windowWidth(), 0.5) == nullptr);
+    // Looking up, the top row shows the sky: nothing to drop onto.
+    viewer.camera().orbit(0.0, -0.3);
+    CHECK(viewer.dropAt(0.5 * viewer.windowWidth(), 0.5) == nullptr);
+    CHECK(viewer.scene().bodies().size() == count);
+}
+
+TEST_CASE("a thrown body leaves the camera along the cursor ray at the throw speed") {
+    const std::string problem = test::ensureXServer();
+    if (!problem.empty()) return test::reportSkipped(problem);
+    OdeSession ode;
+    Viewer viewer(testOptions("brick_wall"));
+    const double x = 0.6 * viewer.windowWidth(), y = 0.4 * viewer.windowHeight();
+    const Ray ray = viewer.camera().rayThroughPixel(x, y, viewer.windowWidth(), viewer.windowHeight());
+    for (SpawnKind kind : {SpawnKind::Box, SpawnKind::Rock, SpawnKind::Composite}) {
+        SECTION(spawnKindName(kind)) {
+            viewer.interaction().kind = kind;
+            const std::size_t count = viewer.scene().bodies().size();
+            const dBodyID thrown = viewer.throwAt(x, y, 9.0);
+            REQUIRE(thrown != nullptr);
+            CHECK(viewer.scene().bodies().size() == count + 1);
+            const Vec3 start = positionOf(thrown);
+            CHECK((start - ray.origin).cross(ray.direction).norm() < 1e-9);  // on the ray
+            CHECK((start - ray.origin).dot(ray.direction) > 0.0);           // in front of the eye
+            CHECK((velocityOf(thrown) - 9.0 * ray.direction).norm() < 1e-9);
+            // One step later gravity has bent it by g·dt at most.
+            viewer.simulate(0.01);
+            CHECK((velocityOf(thrown) - 9.0 * ray.direction).norm() < 9.81 * 0.01 + 1e-9);
+        }
+    }
+}
+
+TEST_CASE("bodies added to a scene collide by the scene's contact method") {
+    const std::string problem = test::ensureXServer();
+    if (!problem.empty()) return test::reportSkipped(problem);
+    OdeSession ode;
+    for (scenes::Method method : {scenes::Method::Gdcontact, scenes::Method::Tracking, scenes::Method::Ode}) {
+        SECTION(scenes::methodName(method)) {
+            ViewerOptions options = testOptions("box_drop");
+            options.method = method;
+            Viewer viewer(options);
+            Eigen::Vector2d pixel;
+            groundBeside(viewer, 1.2, pixel);
+            viewer.interaction().kind = SpawnKind::Rock;
+            const dBodyID rock = viewer.dropAt(pixel.x(), pixel.y());
+            REQUIRE(rock != nullptr);
+            viewer.simulate(2.0);
+            const auto inspection = inspectBody(viewer.scene(), rock);
+            REQUIRE(inspection);
+            INFO("rock at " << inspection->position.transpose());
+            CHECK(inspection->position.z() > 0.0);  // held up by the ground's contacts
+            CHECK(inspection->linearVelocity.norm() < 0.05);
+            CHECK_FALSE(inspection->contacts.empty());
+        }
+    }
+}
+
+TEST_CASE("the inspector shows the body under the cursor with its mass and its contacts") {
+    const std::string problem = test::ensureXServer();
+    if (!problem.empty()) return test::reportSkipped(problem);
+    OdeSession ode;
+    Viewer viewer(testOptions("box_drop"));
+    Eigen::Vector2d pixel;
+    groundBeside(viewer, 1.2, pixel);
+    viewer.interaction().kind = SpawnKind::Box;
+    viewer.interaction().density = 700.0;
+    const dBodyID box = viewer.dropAt(pixel.x(), pixel.y());
+    REQUIRE(box != nullptr);
+    viewer.simulate(1.5);
+
+    const Eigen::Vector2d centre = viewer.camera().project(positionOf(box), viewer.windowWidth(), viewer.windowHeight());
+    const auto inspection = viewer.inspectAt(centre.x(), centre.y());
+    REQUIRE(inspection);
+    CHECK(inspection->body == box);
+    // 700 kg/m³ times the box's volume, from its half extents.
+    const Vec3 half = bodyOf(viewer, box).parts.front().shape->boxHalfExtents();
+    CHECK(inspection->mass == Approx(700.0 * 8.0 * half.prod()).epsilon(1e-9));
+    REQUIRE_FALSE(inspection->contacts.empty());
+    for (const InspectedContact& contact : inspection->contacts) {
+        CHECK(contact.depth >= 0.0);
+        CHECK(contact.normal.norm() == Approx(1.0).epsilon(1e-9));
+        CHECK(contact.normal.z() > 0.99);  // the ground pushes it up
+        CHECK(contact.other == "static");
+    }
+    CHECK_FALSE(viewer.inspectAt(1.0, 1.0));  // the far ground: static geometry, no body
+}
+
+TEST_CASE("wireframe shows the ground through the bodies, bounds draws each part's box") {
+    const std::string problem = test::ensureXServer();
+    if (!problem.empty()) return test::reportSkipped(problem);
+    OdeSession ode;
+    ViewerOptions options = testOptions("brick_wall");
+    options.contacts = false;  // coloured pixels are then the bodies' alone
+    Viewer viewer(options);
+    viewer.simulate(0.1);
+    auto frame = [&] {
+        viewer.draw();
+        return viewer.capture();
+    };
+    const Image solid = frame();
+    viewer.interaction().debug.wireframe = true;
+    const Image wire = frame();
+    viewer.interaction().debug.wireframe = false;
+    viewer.interaction().debug.bounds = true;
+    const Image boxes = frame();
+    writePng(solid, std::string(GDCONTACT_VIEWER_TEST_OUTPUT) + "/debug_solid.png");
+    writePng(wire, std::string(GDCONTACT_VIEWER_TEST_OUTPUT) + "/debug_wireframe.png");
+    writePng(boxes, std::string(GDCONTACT_VIEWER_TEST_OUTPUT) + "/debug_bounds.png");
+    const long solidColoured = statistics(solid).colouredPixels, wireColoured = statistics(wire).colouredPixels;
+    INFO("coloured pixels: solid " << solidColoured << ", wireframe " << wireColoured);
+    CHECK(wireColoured > 0);
+    CHECK(wireColoured < solidColoured / 2);  // edges only: the faces' pixels show the ground now
+    CHECK(cyanPixels(solid) == 0);
+    CHECK(cyanPixels(boxes) > 100);
+}
+
+TEST_CASE("the viewer loads an OBJ file given on the command line, and refuses a bad one") {
+    const std::string problem = test::ensureXServer();
+    if (!problem.empty()) return test::reportSkipped(problem);
+    const std::string viewer = std::string("\"") + GDCONTACT_VIEWER_EXECUTABLE + "\"";
+    CHECK(std::system((viewer + " --scene box_drop --obj \"" + kMaul + "\" --frames 2 --size 320x200 --hidden > /dev/null").c_str()) == 0);
+
+    const std::string bad = std::string(GDCONTACT_VIEWER_TEST_OUTPUT) + "/bad.obj";
+    const std::string log = std::string(GDCONTACT_VIEWER_TEST_OUTPUT) + "/bad_obj.log";
+    std::ofstream(bad) << "o broken\nv 0 0\nv 1 0 0\n";
+    CHECK(std::system((viewer + " --obj \"" + bad + "\" --frames 1 --hidden > /dev/null 2> \"" + log + "\"").c_str()) != 0);
+    std::stringstream message;
+    message << std::ifstream(log).rdbuf();
+    CHECK_THAT(message.str(), Catch::Contains("bad.obj: line 2") && Catch::Contains("three finite numbers"));
+}
+
+TEST_CASE("an OBJ composite dropped into a scene is one body of the file's parts") {
+    const std::string problem = test::ensureXServer();
+    if (!problem.empty()) return test::reportSkipped(problem);
+    OdeSession ode;
+    Viewer viewer(testOptions("composites"));
+    REQUIRE(viewer.interaction().loadObj(kMaul, scenes::ObjLayout::PartPerObject, 2.0));
+    CHECK(viewer.interaction().kind == SpawnKind::Obj);
+    // A bad file later keeps the loaded shape and says why.
+    CHECK_FALSE(viewer.interaction().loadObj("no/such.obj", scenes::ObjLayout::Hull, 1.0));
+    CHECK_THAT(viewer.interaction().objStatus(), Catch::Contains("cannot open"));
+    CHECK(viewer.interaction().kind == SpawnKind::Obj);
+
+    Eigen::Vector2d pixel;
+    groundBeside(viewer, 0.0, pixel);
+    const dBodyID maul = viewer.dropAt(pixel.x(), pixel.y());
+    REQUIRE(maul != nullptr);
+    const scenes::Body& body = bodyOf(viewer, maul);
+    CHECK(body.parts.size() == 2);
+    // Scaled by 2: volumes × 8, mass at 1000 kg/m³.
+    dMass mass;
+    dBodyGetMass(maul, &mass);
+    CHECK(mass.mass == Approx(1000.0 * 8.0 * (2.7e-4 + 3.84e-4)).epsilon(1e-9));
+    viewer.simulate(0.5);
+    viewer.draw();
+    CHECK(statistics(viewer.capture()).colouredPixels > 0);
+}
