@@ -10,14 +10,16 @@
 namespace gdc::viewer {
 namespace {
 
+// + 0.0 turns −0 into 0: a resting body's "-0.000" reads as a sign that means nothing.
 void vectorText(const char* label, const Vec3& v, const char* unit) {
-    ImGui::Text("%s (%.3f, %.3f, %.3f) %s  |%.3f|", label, v.x(), v.y(), v.z(), unit, v.norm());
+    ImGui::Text("%s (%.3f, %.3f, %.3f) %s  |%.3f|", label, v.x() + 0.0, v.y() + 0.0, v.z() + 0.0, unit, v.norm());
 }
 
 }  // namespace
 
 void Interaction::panelSection() {
-    if (!ImGui::CollapsingHeader("add bodies, inspect", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    // Closed at first: the panel is already as tall as a laptop screen; the keys work either way.
+    if (!ImGui::CollapsingHeader("add bodies, inspect")) return;
     const char* names[std::size(kSpawnKinds)];
     for (std::size_t i = 0; i < std::size(kSpawnKinds); ++i) names[i] = spawnKindName(kSpawnKinds[i]);
     int chosen = int(kind);
@@ -53,8 +55,8 @@ void Interaction::panelSection() {
 
 void Interaction::inspectorWindow(const scenes::Scene& scene, const SceneShapes& shapes, const OrbitCamera& camera,
                                   double x, double y, int width, int height) const {
-    ImGui::SetNextWindowPos(ImVec2(float(width) - 350.0f, 10.0f), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(340.0f, 0.0f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowPos(ImVec2(float(width) - 410.0f, 10.0f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(400.0f, 0.0f), ImGuiCond_FirstUseEver);
     ImGui::Begin("inspector");
     const auto inspection = inspectAlong(scene, shapes, camera.rayThroughPixel(x, y, width, height));
     if (!inspection) {
@@ -75,7 +77,7 @@ void Interaction::inspectorWindow(const scenes::Scene& scene, const SceneShapes&
                 ImGui::TableNextColumn();
                 ImGui::Text("%.3f", c.depth * 1e3);
                 ImGui::TableNextColumn();
-                ImGui::Text("%.2f %.2f %.2f", c.normal.x(), c.normal.y(), c.normal.z());
+                ImGui::Text("%.2f %.2f %.2f", c.normal.x() + 0.0, c.normal.y() + 0.0, c.normal.z() + 0.0);
                 ImGui::TableNextColumn();
                 ImGui::TextUnformatted(c.other.c_str());
             }
