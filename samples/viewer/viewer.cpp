@@ -72,6 +72,11 @@ Viewer::Viewer(const ViewerOptions& options) : options_(options), camera_(Vec3::
     showPanel_ = options.panel;
     showContacts_ = options.contacts;
     if (options.width < 64 || options.height < 64) throw std::invalid_argument("window must be at least 64×64 pixels");
+    // Before any window: a bad file is reported as such, with or without an X server.
+    if (!options.obj.empty() &&
+        !interaction_.loadObj(options.obj, options.objHull ? scenes::ObjLayout::Hull : scenes::ObjLayout::PartPerObject,
+                              options.objScale))
+        throw std::runtime_error(interaction_.objStatus());
     glfwSetErrorCallback(reportGlfwError);
     if (!glfwInit()) throw std::runtime_error("cannot initialise GLFW (no X server? set DISPLAY or run under xvfb-run)");
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 2);
@@ -104,10 +109,6 @@ Viewer::Viewer(const ViewerOptions& options) : options_(options), camera_(Vec3::
     imguiReady_ = true;
 
     loadScene(options.scene);
-    if (!options.obj.empty() &&
-        !interaction_.loadObj(options.obj, options.objHull ? scenes::ObjLayout::Hull : scenes::ObjLayout::PartPerObject,
-                              options.objScale))
-        throw std::runtime_error(interaction_.objStatus());
 }
 
 Viewer::~Viewer() {
