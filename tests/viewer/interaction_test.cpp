@@ -137,6 +137,27 @@ TEST_CASE("the shapes to add are centred on their centre of mass and as large as
     }
 }
 
+TEST_CASE("the contact under the cursor is the one drawn nearest it, within the given pixels") {
+    OdeSession ode;
+    auto scene = scenes::makeScene("box_drop");
+    scene->runUntil(2.5);  // the box rests on the ground: its corners touch
+    const auto& contacts = scene->lastContacts();
+    REQUIRE(contacts.size() >= 3);
+    OrbitCamera camera(Vec3::UnitZ());
+    camera.frame(Vec3(-0.5, -0.5, 0.0), Vec3(0.5, 0.5, 0.5));
+    const int width = 640, height = 480;
+    for (const scenes::ContactSample& contact : contacts) {
+        const Eigen::Vector2d pixel = camera.project(contact.position, width, height);
+        const auto found = contactNearPixel(*scene, camera, pixel.x() + 2.0, pixel.y() - 1.0, width, height, 10.0);
+        REQUIRE(found);
+        // This contact or one drawn at least as near the cursor.
+        const double foundDistance = (camera.project(found->position, width, height) - pixel - Eigen::Vector2d(2, -1)).norm();
+        CHECK(foundDistance <= std::sqrt(5.0) + 1e-9);
+    }
+    // Far from every contact: none.
+    CHECK_FALSE(contactNearPixel(*scene, camera, 1.0, 1.0, width, height, 10.0));
+}
+
 // ---- in a window ------------------------------------------------------------------------------
 
 TEST_CASE("dropping a box at the cursor adds one body over the ground point under it") {
