@@ -12,7 +12,7 @@ namespace gdc::viewer {
 namespace {
 
 // Colours of added bodies: saturated, so they stand out from the scenes' own and the grey ground.
-constexpr Colour kSpawnColours[] = {{0.95f, 0.75f, 0.1f}, {0.2f, 0.8f, 0.9f}, {0.9f, 0.3f, 0.8f}, {0.5f, 0.9f, 0.2f}};
+constexpr Colour kSpawnColours[] = {{0.95f, 0.75f, 0.1f}, {0.3f, 0.45f, 0.95f}, {0.9f, 0.3f, 0.8f}, {0.5f, 0.9f, 0.2f}};
 // Clearance above what a dropped body would otherwise touch, as a fraction of its radius: it
 // falls a little, so its first contact is a landing, not an overlap.
 constexpr double kDropGap = 0.05;
