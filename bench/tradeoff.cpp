@@ -30,6 +30,7 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <unordered_map>
 #include <iostream>
 #include <limits>
 #include <sstream>
@@ -368,6 +369,46 @@ Contender gdcontactWith(const TestSets& sets, const gdc::Settings& settings, std
     return c;
 }
 
+/// gdcontact answering from a pair cache filled one step earlier, when the pair stood `distance`/2
+/// away (B shifted in a random direction): what Settings::manifoldReuseDistance = `distance` gives
+/// a pair that moved that much since its last query — the carried contacts (their error against
+/// the exact answer at the pose asked about) and the time of a carried answer.
+Contender gdcontactCarried(const TestSets& sets, double distance, std::string value) {
+    gdc::Settings settings;
+    settings.manifoldReuseDistance = distance;
+    auto earlier = [distance](const Pose& b) {
+        // A direction fixed by the pose (so every run moves each sample alike), length distance/2.
+        const Vec3 seed(std::sin(1e3 * b.position.x()), std::sin(1e3 * b.position.y() + 1), std::cos(1e3 * b.position.z()));
+        Pose moved = b;
+        moved.position -= 0.5 * distance * seed.normalized();
+        return moved;
+    };
+    // Caches filled at the earlier poses, one per sample, keyed by the sample's address; timing then
+    // measures carried answers only (a carried answer leaves its cache as it was), plus the lookup.
+    auto caches = std::make_shared<std::unordered_map<const Pose*, gdc::PairCache>>();
+    auto cacheFor = [&sets, settings, earlier, caches](bool hulls, const Pose& a, const Pose& b) -> gdc::PairCache& {
+        auto [entry, isNew] = caches->try_emplace(&b);
+        if (isNew) {
+            const gdc::Polytope& shape = hulls ? sets.hull : sets.cube;
+            gdc::collide(shape, a, shape, earlier(b), settings, entry->second);
+        }
+        return entry->second;
+    };
+    Contender c;
+    c.group = "settings";
+    c.parameter = "manifoldReuseDistance";
+    c.value = std::move(value);
+    c.answer = [&sets, settings, cacheFor](bool hulls, const Pose& a, const Pose& b) {
+        const gdc::Polytope& shape = hulls ? sets.hull : sets.cube;
+        return fromManifold(gdc::collide(shape, a, shape, b, settings, cacheFor(hulls, a, b)));
+    };
+    c.count = [&sets, settings, cacheFor](bool hulls, const Pose& a, const Pose& b) {
+        const gdc::Polytope& shape = hulls ? sets.hull : sets.cube;
+        return gdc::collide(shape, a, shape, b, settings, cacheFor(hulls, a, b)).pointCount;
+    };
+    return c;
+}
+
 /// ODE's own colliders on geoms posed for each call (ODE has no pose argument).
 struct OdePair {
     dGeomID a, b;
@@ -505,6 +546,8 @@ std::vector<Contender> settingsSweep(const TestSets& sets) {
     gdc::Settings separatingAxis;  // the whole pipeline with the SAT's exact normal in stage 1
     separatingAxis.normalMethod = gdc::NormalMethod::SeparatingAxis;
     out.push_back(gdcontactWith(sets, separatingAxis, "normalMethod", "SeparatingAxis"));
+    // The pair cache's opt-in reuse: the pair moved half the distance since the query that filled it.
+    for (double v : {1e-4, 1e-3, 1e-2}) out.push_back(gdcontactCarried(sets, v, text(v) + " (moved " + text(v / 2) + ")"));
     return out;
 }
 

@@ -3,6 +3,7 @@
 #include <gdcontact/polytope.hpp>
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -320,6 +321,35 @@ void Polytope::buildTopology(double size) {
                 if (std::find(supportSeeds_.begin(), supportSeeds_.end(), seed) == supportSeeds_.end())
                     supportSeeds_.push_back(seed);
             }
+    computeFingerprint();
+}
+
+// splitmix64's finaliser (Steele, Lea, Flood 2014) over every number a query reads: vertices,
+// face planes and loops, and the box flag. Doubles are hashed by their bits, so −0 and 0 differ:
+// the fingerprint promises identical answers, not equal shapes.
+void Polytope::computeFingerprint() {
+    std::uint64_t hash = 0x9E3779B97F4A7C15ull;
+    auto mix = [&hash](std::uint64_t value) {
+        std::uint64_t z = hash + value + 0x9E3779B97F4A7C15ull;
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        hash = z ^ (z >> 31);
+    };
+    auto mixDouble = [&mix](double value) {
+        std::uint64_t bits;
+        std::memcpy(&bits, &value, sizeof bits);
+        mix(bits);
+    };
+    mix(vertices_.size());
+    for (const Vec3& v : vertices_) mixDouble(v.x()), mixDouble(v.y()), mixDouble(v.z());
+    mix(faces_.size());
+    for (const Face& face : faces_) {
+        mixDouble(face.normal.x()), mixDouble(face.normal.y()), mixDouble(face.normal.z()), mixDouble(face.offset);
+        mix(static_cast<std::uint64_t>(face.count));
+    }
+    for (int v : faceVertices_) mix(static_cast<std::uint64_t>(v));
+    mix(isBox_ ? 1 : 0);
+    fingerprint_ = hash;
 }
 
 Polytope Polytope::box(const Vec3& halfExtents) {
@@ -335,6 +365,7 @@ Polytope Polytope::box(const Vec3& halfExtents) {
     Polytope box = fromFaces(corners, faces);
     box.isBox_ = true;  // vertex i has the signs of bits (x: 1, y: 2, z: 4), as built above
     box.boxHalfExtents_ = halfExtents;
+    box.computeFingerprint();
     return box;
 }
 

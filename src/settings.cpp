@@ -31,6 +31,17 @@ void validate(const Settings& settings) {
     const int method = static_cast<int>(settings.normalMethod);
     requireWithin("normalMethod", method, static_cast<int>(NormalMethod::GrowthDistance),
                   static_cast<int>(NormalMethod::SeparatingAxis), " (a NormalMethod value)");
+    requireWithin("manifoldReuseDistance", settings.manifoldReuseDistance, 0.0, 1.0, " scene length units");
+}
+
+// Every field: a field added to Settings must be added here (tests/pair_cache_test.cpp changes
+// each field in turn and expects a difference).
+bool operator==(const Settings& a, const Settings& b) {
+    return a.rayCastTolerance == b.rayCastTolerance && a.maxRayCastIterations == b.maxRayCastIterations &&
+           a.angularTolerance == b.angularTolerance && a.margin == b.margin &&
+           a.spanContactRegion == b.spanContactRegion && a.maxContacts == b.maxContacts &&
+           a.bruteForceSupportLimit == b.bruteForceSupportLimit && a.coplanarTolerance == b.coplanarTolerance &&
+           a.normalMethod == b.normalMethod && a.manifoldReuseDistance == b.manifoldReuseDistance;
 }
 
 }  // namespace gdc

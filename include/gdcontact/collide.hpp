@@ -2,6 +2,7 @@
 #pragma once
 
 #include <gdcontact/manifold.hpp>
+#include <gdcontact/pair_cache.hpp>
 #include <gdcontact/polytope.hpp>
 #include <gdcontact/settings.hpp>
 
@@ -25,5 +26,16 @@ GDCONTACT_API Manifold collide(const Polytope& a, const Pose& poseA, const Polyt
 /// −halfSpace.normal (from A into B's solid, as above).
 GDCONTACT_API Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b,
                  const Settings& settings = {});
+
+/// The same queries with the pair's cache (pair_cache.hpp): when neither pose, shape nor setting
+/// changed since the query that filled it, its answer is returned without a query — the same
+/// manifold bit for bit. With Settings::manifoldReuseDistance > 0, a pair that moved less than that
+/// (every point of B relative to A) gets the cached contacts carried along with the bodies, their
+/// depths re-measured. Otherwise a full query, which then fills the cache. cache.lastAnswer() says
+/// which. Throws as the queries above (the cache is then emptied).
+GDCONTACT_API Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
+                               const Settings& settings, PairCache& cache);
+GDCONTACT_API Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings,
+                               PairCache& cache);
 
 }  // namespace gdc

@@ -13,6 +13,7 @@
 #include <ode/ode.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 
 namespace gdc::ode {
@@ -108,5 +109,37 @@ GDCONTACT_API void spaceCollide(dSpaceID space, int maxContactsPerPair, void* da
 /// 1 serial, on the calling thread; n: the calling thread and n − 1 pool threads. Throws
 /// InvalidInput outside 0..256. Takes effect at the next spaceCollide call.
 GDCONTACT_API void setThreadCount(int threads);
+
+}  // namespace gdc::ode
+
+// ---- The pair cache (src/ode/pair_cache_table.cpp, docs/ode.md) --------------------------------
+namespace gdc::ode {
+
+/// What the adapter's pair cache holds and how its answers went since it was last cleared.
+struct PairCacheStats {
+    std::size_t entries;   ///< geom pairs cached now
+    std::size_t capacity;  ///< most entries it keeps (setPairCacheCapacity)
+    std::size_t bytes;     ///< memory it holds
+    std::uint64_t hits;     ///< answers repeated without a query (nothing moved: exact, bit for bit)
+    std::uint64_t carried;  ///< answers carried along (moved < Settings::manifoldReuseDistance)
+    std::uint64_t misses;   ///< full queries
+};
+
+/// The adapter keeps one gdc::PairCache per geom pair it is asked about (collide() and
+/// spaceCollide), on by default. With the default settings it is exact: a pair none of whose
+/// inputs changed (poses, shapes, settings — bodies that ODE auto-disabled, or static geoms) gets
+/// its last answer again, bit for bit, without a query; any other pair a full query. With
+/// Settings::manifoldReuseDistance > 0 a pair that moved less than that gets its contacts carried
+/// along instead (an approximation: see settings.hpp). Entries die with their geoms (ODE's free
+/// hook), age out when their pair is no longer asked about, and never exceed the capacity. No
+/// thread ever waits for it: a collide() call that finds it in use by another thread queries
+/// without it (same answer). Off: every call a full query.
+GDCONTACT_API void setPairCacheEnabled(bool enabled);
+/// At most `entries` cached pairs (default 65536; about 0.9 KB each); shrinking drops the least
+/// recently used. Not from inside a spaceCollide handler.
+GDCONTACT_API void setPairCacheCapacity(std::size_t entries);
+/// Drops every entry and zeroes the statistics. Not from inside a spaceCollide handler.
+GDCONTACT_API void clearPairCache();
+GDCONTACT_API PairCacheStats pairCacheStats();
 
 }  // namespace gdc::ode

@@ -6,6 +6,7 @@
 #include <gdcontact/settings.hpp>
 #include <gdcontact/types.hpp>
 
+#include <cstdint>
 #include <vector>
 
 namespace gdc {
@@ -72,6 +73,11 @@ public:
     /// closed-form fast paths that give the same answers as the general algorithms.
     bool isBox() const { return isBox_; }
     const Vec3& boxHalfExtents() const { return boxHalfExtents_; }
+    /// A 64-bit hash of everything a contact query reads of the polytope (vertices, faces, the box
+    /// flag): equal for copies, different — but for a 2⁻⁶⁴ chance — for any other shape. A
+    /// PairCache recognises its shapes by it, so a polytope freed and another built at the same
+    /// address is never mistaken for the first.
+    std::uint64_t fingerprint() const { return fingerprint_; }
 
     /// Index of a vertex maximising direction·vertex (brute force up to `bruteForceLimit`
     /// vertices, hill climbing over adjacency above it). `start`, when a vertex index, is where the
@@ -82,6 +88,7 @@ public:
 private:
     Polytope() = default;
     void buildTopology(double coplanarTolerance);
+    void computeFingerprint();
 
     std::vector<Vec3> vertices_;
     std::vector<Face> faces_;
@@ -96,6 +103,7 @@ private:
     double volume_ = 0.0;
     bool isBox_ = false;
     Vec3 boxHalfExtents_ = Vec3::Zero();
+    std::uint64_t fingerprint_ = 0;
 };
 
 }  // namespace gdc

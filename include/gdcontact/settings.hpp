@@ -85,6 +85,24 @@ struct Settings {
 
     /// One of the NormalMethod values (checked: a value cast from an integer may be neither).
     NormalMethod normalMethod = NormalMethod::GrowthDistance;
+
+    /// Pair cache (only where a PairCache is passed: collide(..., cache), and the ODE adapter's
+    /// own cache) — how far the pair may have moved since its last full query and still get that
+    /// query's contacts again, carried along with the two bodies, their depths re-measured
+    /// (metres, the scene's length unit; the bound is on every point of B, relative to A, so a
+    /// turn counts by the distance it moves B's farthest vertex). 0 (default): exact — the cache
+    /// answers without a query only when nothing moved, and its answer is then the query's, bit
+    /// for bit. Larger: resting and slowly moving pairs skip the query (a carried manifold costs
+    /// a few hundred instructions instead of thousands), at an error in depth and position of at
+    /// most about this distance, and new contact features are noticed only once the pair has
+    /// moved this far (Jolt's default is 1 mm and 2°). docs/benchmarks.md's trade table measures both.
+    /// Bounds [0, 1] (scene length unit), as margin: a whole length unit is a unit mistake.
+    double manifoldReuseDistance = 0.0;
 };
+
+/// Whether two settings are the same in every field (a PairCache answers only for the settings it
+/// was filled with).
+GDCONTACT_API bool operator==(const Settings& a, const Settings& b);
+inline bool operator!=(const Settings& a, const Settings& b) { return !(a == b); }
 
 }  // namespace gdc

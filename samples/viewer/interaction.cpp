@@ -241,23 +241,44 @@ SpawnShape Interaction::nextShape(const scenes::Scene& scene) {
     return obj_ ? *obj_ : makeSpawnBox(radius);  // no file loaded yet: a box rather than nothing
 }
 
-dBodyID Interaction::drop(scenes::Scene& scene, const SceneShapes& shapes, const Ray& cursorRay, double maxDistance) {
+dBodyID addSpawn(scenes::Scene& scene, const Spawn& spawn) {
+    return scene.spawnBody(spawn.name, spawn.shape.parts, spawn.density, spawn.pose, spawn.velocity, spawn.colour);
+}
+
+std::optional<Spawn> Interaction::planDrop(const scenes::Scene& scene, const SceneShapes& shapes,
+                                           const Ray& cursorRay, double maxDistance) {
     SpawnShape shape = nextShape(scene);
     const auto position = dropPosition(shapes, cursorRay, shape.radius, maxDistance);
-    if (!position) return nullptr;
-    Pose pose;
-    pose.position = *position;
-    return scene.spawnBody(shape.name + " " + std::to_string(spawned_), shape.parts, density, pose, Vec3::Zero(),
-                           kSpawnColours[spawned_ % std::size(kSpawnColours)]);
+    if (!position) return std::nullopt;
+    Spawn spawn;
+    spawn.name = shape.name + " " + std::to_string(spawned_);
+    spawn.shape = std::move(shape);
+    spawn.pose.position = *position;
+    spawn.density = density;
+    spawn.colour = kSpawnColours[spawned_ % std::size(kSpawnColours)];
+    return spawn;
+}
+
+Spawn Interaction::planThrow(const scenes::Scene& scene, const Ray& cursorRay, double speed) {
+    SpawnShape shape = nextShape(scene);
+    const Launch launch = launchAlong(cursorRay, shape.radius, speed);
+    Spawn spawn;
+    spawn.name = shape.name + " " + std::to_string(spawned_);
+    spawn.shape = std::move(shape);
+    spawn.pose.position = launch.position;
+    spawn.velocity = launch.velocity;
+    spawn.density = density;
+    spawn.colour = kSpawnColours[spawned_ % std::size(kSpawnColours)];
+    return spawn;
+}
+
+dBodyID Interaction::drop(scenes::Scene& scene, const SceneShapes& shapes, const Ray& cursorRay, double maxDistance) {
+    const auto spawn = planDrop(scene, shapes, cursorRay, maxDistance);
+    return spawn ? addSpawn(scene, *spawn) : nullptr;
 }
 
 dBodyID Interaction::throwAlong(scenes::Scene& scene, const Ray& cursorRay, double speed) {
-    SpawnShape shape = nextShape(scene);
-    const Launch launch = launchAlong(cursorRay, shape.radius, speed);
-    Pose pose;
-    pose.position = launch.position;
-    return scene.spawnBody(shape.name + " " + std::to_string(spawned_), shape.parts, density, pose, launch.velocity,
-                           kSpawnColours[spawned_ % std::size(kSpawnColours)]);
+    return addSpawn(scene, planThrow(scene, cursorRay, speed));
 }
 
 }  // namespace gdc::viewer

@@ -122,8 +122,22 @@ struct DebugDraw {
 /// What the renderer should draw under `debug`: in wireframe mode only the planes (the edges come
 /// from drawDebugOverlay); `planes` keeps the shapes the returned input points to.
 FrameInput rendererInput(const FrameInput& in, const DebugDraw& debug, std::vector<DrawShape>& planes);
-/// Draws the wireframe edges and bounding boxes with the camera of `in` (after the renderer).
+/// Draws the wireframe edges and bounding boxes with the camera and into the viewport of `in`
+/// (after the renderer has drawn that frame; side by side, once per view with its own world).
 void drawDebugOverlay(const FrameInput& in, const DebugDraw& debug);
+
+/// A body about to be added: its shape, where and how fast. Made once and added to every world of
+/// the side-by-side view alike, so both get the same body (the same rock, too) at the same pose.
+struct Spawn {
+    SpawnShape shape;
+    std::string name;  ///< unique in the scene: "box 3" (the side-by-side view matches bodies by it)
+    Pose pose;
+    Vec3 velocity = Vec3::Zero();  ///< m/s
+    double density = 1000.0;       ///< kg/m³
+    Colour colour{};
+};
+/// Adds `spawn` to `scene` (Scene::spawnBody); returns the new body.
+dBodyID addSpawn(scenes::Scene& scene, const Spawn& spawn);
 
 /// The viewer's interaction state: what a drop or throw adds, the loaded OBJ shape, the
 /// inspector and debug-draw switches, and the panel section and inspector window that edit them.
@@ -144,18 +158,23 @@ public:
     /// The next body to add: the chosen kind, sized like the scene's own bodies (the median
     /// bounding radius); an OBJ shape keeps its own size. Each rock is a new one.
     SpawnShape nextShape(const scenes::Scene& scene);
-    /// Adds the next body over the point the cursor ray meets within `maxDistance`; null if it
-    /// meets nothing there.
+    /// The next body, over the point the cursor ray meets within `maxDistance` of `scene`'s
+    /// shapes; nothing if it meets nothing there.
+    std::optional<Spawn> planDrop(const scenes::Scene& scene, const SceneShapes& shapes, const Ray& cursorRay,
+                                  double maxDistance);
+    /// The next body, in front of the camera, flying along the cursor ray at `speed` m/s.
+    Spawn planThrow(const scenes::Scene& scene, const Ray& cursorRay, double speed);
+    /// planDrop / planThrow added to `scene` alone; null if nothing was added.
     dBodyID drop(scenes::Scene& scene, const SceneShapes& shapes, const Ray& cursorRay, double maxDistance);
-    /// Adds the next body in front of the camera, flying along the cursor ray at `speed` m/s.
     dBodyID throwAlong(scenes::Scene& scene, const Ray& cursorRay, double speed);
 
     // ImGui (interaction_panel.cpp)
     /// The panel section: kind, throw speed, density, OBJ file, inspector and debug switches.
     void panelSection();
-    /// The inspector window for the cursor at pixel (x, y) of a width × height window.
-    void inspectorWindow(const scenes::Scene& scene, const SceneShapes& shapes, const OrbitCamera& camera, double x,
-                         double y, int width, int height) const;
+    /// The inspector window for the cursor at pixel (x, y) of a width × height view of `scene`
+    /// (null: the cursor is on no view); `view` names the view side by side ("left, gdcontact").
+    void inspectorWindow(const scenes::Scene* scene, const SceneShapes& shapes, const OrbitCamera& camera, double x,
+                         double y, int width, int height, const std::string& view = "") const;
 
 private:
     std::optional<SpawnShape> obj_;

@@ -43,7 +43,10 @@ FrameInput rendererInput(const FrameInput& in, const DebugDraw& debug, std::vect
 
 void drawDebugOverlay(const FrameInput& in, const DebugDraw& debug) {
     if ((!debug.wireframe && !debug.bounds) || in.shapes == nullptr || in.camera == nullptr) return;
-    glViewport(0, 0, in.width, in.height);
+    // Into the frame's own viewport (side by side: one of two), clipped to it as the renderer is.
+    glViewport(in.x, in.y, in.width, in.height);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(in.x, in.y, in.width, in.height);
     glMatrixMode(GL_PROJECTION);
     const Mat4 projection = in.camera->projection(double(in.width) / std::max(in.height, 1));
     glLoadMatrixd(projection.data());
@@ -75,6 +78,7 @@ void drawDebugOverlay(const FrameInput& in, const DebugDraw& debug) {
         for (const auto& [low, high] : shapeBounds(shapes)) drawBox(low, high);
     }
     glEnd();
+    glDisable(GL_SCISSOR_TEST);
 }
 
 }  // namespace gdc::viewer

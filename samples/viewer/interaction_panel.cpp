@@ -53,12 +53,20 @@ void Interaction::panelSection() {
     ImGui::TextDisabled("i inspector  w wireframe  b bounds");
 }
 
-void Interaction::inspectorWindow(const scenes::Scene& scene, const SceneShapes& shapes, const OrbitCamera& camera,
-                                  double x, double y, int width, int height) const {
-    ImGui::SetNextWindowPos(ImVec2(float(width) - 410.0f, 10.0f), ImGuiCond_FirstUseEver);
+void Interaction::inspectorWindow(const scenes::Scene* scene, const SceneShapes& shapes, const OrbitCamera& camera,
+                                  double x, double y, int width, int height, const std::string& view) const {
+    // At the window's right edge, below where a view's method and verdict are written (side by
+    // side, the right view's), whichever view is inspected.
+    ImGui::SetNextWindowPos(ImVec2(ImGui::GetIO().DisplaySize.x - 410.0f, 100.0f), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(400.0f, 0.0f), ImGuiCond_FirstUseEver);
     ImGui::Begin("inspector");
-    const auto inspection = inspectAlong(scene, shapes, camera.rayThroughPixel(x, y, width, height));
+    if (scene == nullptr) {
+        ImGui::TextDisabled("the cursor is on no view");
+        ImGui::End();
+        return;
+    }
+    if (!view.empty()) ImGui::TextDisabled("%s", view.c_str());
+    const auto inspection = inspectAlong(*scene, shapes, camera.rayThroughPixel(x, y, width, height));
     if (!inspection) {
         ImGui::TextDisabled("no body under the cursor");
     } else {
@@ -85,7 +93,7 @@ void Interaction::inspectorWindow(const scenes::Scene& scene, const SceneShapes&
         }
     }
     // A contact drawn within 10 pixels of the cursor: the one a person is pointing at.
-    if (const auto contact = contactNearPixel(scene, camera, x, y, width, height, 10.0)) {
+    if (const auto contact = contactNearPixel(*scene, camera, x, y, width, height, 10.0)) {
         ImGui::Separator();
         ImGui::Text("contact under the cursor: depth %.3f mm", contact->depth * 1e3);
         vectorText("at", contact->position, "m");

@@ -1,7 +1,7 @@
 // viewer — interactive (or headless) view of the paper's scenes.
-//   viewer [--scene NAME] [--method gdc|tracking|ode] [--size WxH]
-//          [--frames N [--screenshot FILE.png [--fit]] [--realtime]] [--no-panel] [--no-contacts] [--scripted]
-//          [--obj FILE.obj [--obj-hull] [--obj-scale S]]
+//   viewer [--scene NAME] [--method gdc|tracking|ode] [--side-by-side [--compare M]] [--convex] [--size WxH]
+//          [--frames N [--screenshot FILE.png [--fit]] [--realtime]] [--no-panel] [--no-contacts]
+//          [--contacts-through] [--no-labels] [--scripted] [--obj FILE.obj [--obj-hull] [--obj-scale S]]
 #include "viewer.hpp"
 
 #include <ode/ode.h>
@@ -23,13 +23,18 @@ void usage(std::FILE* out) {
     for (std::size_t i = 0; i < names.size(); ++i) std::fprintf(out, "%s%s", i ? ", " : "", names[i].c_str());
     std::fprintf(out,
                  ")\n"
-                 "  --method M          contacts by gdc | tracking | ode\n"
+                 "  --method M          contacts by gdc | tracking | ode (the left view side by side)\n"
+                 "  --side-by-side      the same scene in a second world beside the first, same actions\n"
+                 "  --compare M         the second world's contacts: ode (default) | tracking | gdc\n"
+                 "  --convex            box-shaped bodies as dConvex instead of ODE's dBox\n"
                  "  --size WxH          window size in pixels (default 1280x720)\n"
                  "  --frames N          draw N frames and exit (each advances 1/60 s of simulated time)\n"
                  "  --realtime          with --frames: advance by wall-clock time, no vsync; prints the fps\n"
                  "  --screenshot FILE   with --frames: write the last frame as PNG\n"
                  "  --no-panel          hide the control panel\n"
                  "  --no-contacts       hide the contact overlay\n"
+                 "  --contacts-through  draw contacts over the bodies in front of them (default: hidden there)\n"
+                 "  --no-labels         no method, verdict or contact legend over the picture\n"
                  "  --scripted          let the scene's scripted user act (builder, remover, push)\n"
                  "  --fit               with --screenshot: frame the bodies where they are at the end\n"
                  "  --hidden            do not show the window\n"
@@ -37,11 +42,12 @@ void usage(std::FILE* out) {
                  "                      OBJ file one convex part (V-HACD/CoACD output), or with --obj-hull\n"
                  "                      the hull of the whole file; --obj-scale S multiplies its coordinates\n"
                  "\n"
-                 "mouse: left-drag a body to pull it; ctrl/shift+click removes a brick; left/right-drag\n"
-                 "elsewhere orbits, middle-drag pans, wheel zooms. keys: space pause, s step, r reset,\n"
-                 "p push, c contacts, f fit view, h hide panel, esc quit;\n"
-                 "d drop at the cursor, t throw from the camera (shift+right-drag: throw by flick), 1-4 box /\n"
-                 "rock / composite / OBJ, i inspector, w wireframe, b bounding boxes\n");
+                 "mouse: left-drag a body to pull it; ctrl/shift+click removes a brick or an added body;\n"
+                 "shift+right-drag throws by flick; left/right-drag elsewhere orbits, middle-drag pans,\n"
+                 "wheel zooms. keys: space pause, s step, r reset, p push, c contacts, x contacts through\n"
+                 "bodies, v side by side, g dBox/dConvex, f fit view, h hide panel, esc quit;\n"
+                 "d drop at the cursor, t throw from the camera, 1-4 box / rock / composite / OBJ,\n"
+                 "i inspector, w wireframe, b bounding boxes (side by side, added bodies go to both worlds)\n");
 }
 
 }  // namespace
@@ -60,7 +66,17 @@ int main(int argc, char** argv) {
                 const std::string name = value();
                 options.method = gdc::scenes::parseMethod(name);
                 if (!options.method) throw std::invalid_argument("unknown method '" + name + "' (gdc, tracking, ode)");
-            } else if (arg == "--size") {
+            } else if (arg == "--compare") {
+                const std::string name = value();
+                const auto method = gdc::scenes::parseMethod(name);
+                if (!method) throw std::invalid_argument("unknown method '" + name + "' (gdc, tracking, ode)");
+                options.compareMethod = *method;
+                options.sideBySide = true;
+            } else if (arg == "--side-by-side") options.sideBySide = true;
+            else if (arg == "--convex") options.convexBoxes = true;
+            else if (arg == "--contacts-through") options.contactsThrough = true;
+            else if (arg == "--no-labels") options.labels = false;
+            else if (arg == "--size") {
                 const std::string size = value();
                 if (std::sscanf(size.c_str(), "%dx%d", &options.width, &options.height) != 2)
                     throw std::invalid_argument("--size wants WxH, got '" + size + "'");

@@ -35,48 +35,20 @@ void drawBackground() {
     glEnd();
 }
 
-void setupLights(const OrbitCamera& camera) {
-    glEnable(GL_LIGHTING);
-    glEnable(GL_NORMALIZE);
-    glEnable(GL_COLOR_MATERIAL);
-    glColorMaterial(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE);
-    const GLfloat ambient[] = {0.30f, 0.30f, 0.30f, 1.0f};
-    glLightModelfv(GL_LIGHT_MODEL_AMBIENT, ambient);
-    // A key light from above and behind the viewer's left shoulder, a weaker fill from the eye,
-    // so that the three visible faces of a box get three different shades.
-    const Vec3 eyeDirection = (camera.eye() - camera.target()).normalized();
-    const Vec3 side = eyeDirection.cross(camera.up()).normalized();
-    const Vec3 key = (2.0 * camera.up() + eyeDirection - 0.7 * side).normalized();
-    const GLfloat keyPosition[] = {float(key.x()), float(key.y()), float(key.z()), 0.0f};
-    const GLfloat keyColour[] = {0.60f, 0.60f, 0.60f, 1.0f};
-    const GLfloat fillPosition[] = {float(eyeDirection.x()), float(eyeDirection.y()), float(eyeDirection.z()), 0.0f};
-    const GLfloat fillColour[] = {0.25f, 0.25f, 0.25f, 1.0f};
-    const GLfloat black[] = {0, 0, 0, 1};
-    glEnable(GL_LIGHT0);
-    glLightfv(GL_LIGHT0, GL_POSITION, keyPosition);  // world-space: the modelview holds the view
-    glLightfv(GL_LIGHT0, GL_DIFFUSE, keyColour);
-    glLightfv(GL_LIGHT0, GL_SPECULAR, black);
-    glLightfv(GL_LIGHT0, GL_AMBIENT, black);
-    glEnable(GL_LIGHT1);
-    glLightfv(GL_LIGHT1, GL_POSITION, fillPosition);
-    glLightfv(GL_LIGHT1, GL_DIFFUSE, fillColour);
-    glLightfv(GL_LIGHT1, GL_SPECULAR, black);
-    glLightfv(GL_LIGHT1, GL_AMBIENT, black);
-}
-
 void drawMesh(const DrawShape& shape, const Colour& colour, bool highlighted, bool outlines) {
     const ConvexMesh& mesh = *shape.mesh;
     const Mat3& r = shape.pose.rotation;
     Colour c = colour;
     if (highlighted)
         for (float& channel : c) channel = 0.5f * channel + 0.5f;
-    glEnable(GL_LIGHTING);
+    // Lit here, once per face, rather than by GL lighting: the faces are flat anyway, and a sun
+    // fixed in the world keeps each face's shade (and the shadows) still while the camera orbits.
+    glDisable(GL_LIGHTING);
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1.0f, 1.0f);  // push faces back so the outlines on their edges win
-    glColor3f(c[0], c[1], c[2]);
     for (const auto& face : mesh.faces) {
-        const Vec3 n = r * face.normal;
-        glNormal3d(n.x(), n.y(), n.z());
+        const float shade = float(faceBrightness(r * face.normal));
+        glColor3f(shade * c[0], shade * c[1], shade * c[2]);
         glBegin(GL_POLYGON);
         for (int i : face.loop) vertex(shape.pose.apply(mesh.vertices[i]));
         glEnd();
@@ -94,9 +66,11 @@ void drawMesh(const DrawShape& shape, const Colour& colour, bool highlighted, bo
 }
 
 void drawContacts(const FrameInput& in) {
-    // Drawn without depth test: contacts lie between bodies, hidden by both.
+    // Depth-tested by default, so a contact behind a body does not seem to float in front of it;
+    // "through" shows them all (contacts lie between bodies, so most are hidden by both).
     glDisable(GL_LIGHTING);
-    glDisable(GL_DEPTH_TEST);
+    if (in.contactsThrough) glDisable(GL_DEPTH_TEST);
+    else glEnable(GL_DEPTH_TEST);
     glBegin(GL_LINES);
     for (const auto& c : in.contacts) {
         glColor3f(1.0f, 0.85f, 0.1f);  // normal: yellow
@@ -120,6 +94,55 @@ void drawContacts(const FrameInput& in) {
 }
 
 }  // namespace
+
+Vec3 sunDirection() {
+    // 50° up, from the default camera's right (it looks along +x+y·2.2 from the −y side): the
+    // shadows fall to the left, beside the bodies, where the camera sees them, not behind them.
+    return Vec3(0.976, -0.22, 1.2).normalized();
+}
+
+double faceBrightness(const Vec3& normal) {
+    // Hemisphere ambient: 0.5 from the sky for a face looking up, 0.25 for one looking down (the
+    // ground's bounce light), so a stacked body's underside and the top of the one below differ.
+    const double up = std::clamp(normal.z(), -1.0, 1.0);
+    const double ambient = 0.375 + 0.125 * up;
+    return ambient + 0.5 * std::max(0.0, normal.dot(sunDirection()));
+}
+
+void Renderer::drawShadows(const DrawShape& plane, const FrameInput& in) {
+    // Each body's faces projected along the sun's direction onto the plane: dark, translucent,
+    // and counted in the stencil buffer so where two shadows overlap the ground darkens once.
+    const Vec3 n = plane.planeNormal;
+    const Vec3 sun = sunDirection();
+    const double towardsSun = n.dot(sun);
+    if (towardsSun < 0.05) return;  // sun at or below this plane's horizon: no shadow to cast on it
+    auto project = [&](const Vec3& p) {
+        const double height = std::max(0.0, n.dot(p) - plane.planeOffset);
+        return Vec3(p - (height / towardsSun) * sun);
+    };
+    glDisable(GL_LIGHTING);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(-1.0f, -1.0f);  // in front of the ground it lies on
+    glEnable(GL_STENCIL_TEST);      // without a stencil buffer the test passes: overlaps darken twice
+    glStencilFunc(GL_EQUAL, 0, 0xff);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+    glColor4f(0.0f, 0.0f, 0.0f, 0.32f);
+    for (const auto& shape : *in.shapes) {
+        if (shape.isPlane()) continue;
+        for (const auto& face : shape.mesh->faces) {
+            glBegin(GL_POLYGON);
+            for (int i : face.loop) vertex(project(shape.pose.apply(shape.mesh->vertices[i])));
+            glEnd();
+        }
+    }
+    glDisable(GL_STENCIL_TEST);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+}
 
 void Renderer::drawGround(const DrawShape& plane, const FrameInput& in) {
     // One large quad with a repeating 2×2 checker texture: a software rasteriser fills it far
@@ -174,10 +197,14 @@ Renderer::~Renderer() {
 }
 
 void Renderer::render(const FrameInput& in) {
-    glViewport(0, 0, in.width, in.height);
+    // The scissor keeps the clear inside this viewport: side by side, the other view stays.
+    glViewport(in.x, in.y, in.width, in.height);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(in.x, in.y, in.width, in.height);
     glClearColor(kSkyTop[0], kSkyTop[1], kSkyTop[2], 1.0f);
     glClearDepth(1.0);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glClearStencil(0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
     drawBackground();
 
     glMatrixMode(GL_PROJECTION);
@@ -189,11 +216,14 @@ void Renderer::render(const FrameInput& in) {
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
     glShadeModel(GL_FLAT);
-    setupLights(*in.camera);
+    glDisable(GL_LIGHTING);
 
     const auto& shapes = *in.shapes;
     for (std::size_t i = 0; i < shapes.size(); ++i)
-        if (shapes[i].isPlane()) drawGround(shapes[i], in);
+        if (shapes[i].isPlane()) {
+            drawGround(shapes[i], in);
+            if (in.shadows) drawShadows(shapes[i], in);
+        }
     for (std::size_t i = 0; i < shapes.size(); ++i) {
         if (shapes[i].isPlane()) continue;
         const bool lit = i < in.highlighted.size() && in.highlighted[i];
@@ -217,6 +247,7 @@ void Renderer::render(const FrameInput& in) {
     }
     glLineWidth(1.0f);
     glDisable(GL_LIGHTING);
+    glDisable(GL_SCISSOR_TEST);
 }
 
 }  // namespace gdc::viewer

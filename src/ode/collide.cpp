@@ -1,6 +1,7 @@
 // gdc::ode::install / collide: ODE's geoms in, the core's manifold out as dContactGeoms.
 #include <gdcontact/ode.hpp>
 
+#include "pair_cache_table.hpp"
 #include "state.hpp"
 
 #include <algorithm>
@@ -235,6 +236,30 @@ bool comesFirst(const Vec3& p, dGeomID geomP, const Vec3& q, dGeomID geomQ) {
 // Vec3::allFinite without the reduction machinery: x − x is 0 exactly for a finite x, NaN else.
 bool isFinite(const Vec3& v) { return (v.x() - v.x()) + (v.y() - v.y()) + (v.z() - v.z()) == 0.0; }
 
+// Where a pair's cache comes from: handed over (spaceCollide found it while ODE's broad phase listed
+// the pair), found through this call's own lease on the table, or none (the table is busy or off).
+struct CacheSource {
+    PairCache* given = nullptr;
+    detail::PairCacheTable::Lease* lease = nullptr;
+    PairCache* find(dGeomID o1, dGeomID o2) const {
+        if (given) return given;
+        return lease && *lease ? lease->find(o1, o2) : nullptr;
+    }
+    void count(const PairCache* cache) const {
+        if (cache && !given && lease && *lease) lease->count(*cache);
+    }
+};
+
+// The core query, through the pair's cache when there is one.
+template <class Query, class CachedQuery>
+Manifold queryThrough(const CacheSource& source, dGeomID o1, dGeomID o2, Query query, CachedQuery cachedQuery) {
+    PairCache* cache = source.find(o1, o2);
+    if (!cache) return query();
+    Manifold manifold = cachedQuery(*cache);
+    source.count(cache);
+    return manifold;
+}
+
 // The core's contacts as ODE's: deepest first, at most maxContacts, written in place at stride
 // `skip`. `flip`: the core's A is o2 (its normal then already points from o2 into o1).
 int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int maxContacts, dGeomID o1,
@@ -303,7 +328,7 @@ Manifold collideLimited(const Settings& settings, int maxContacts, Collide colli
 
 int collidePolytopeWithPlane(dGeomID o1, int class1, dGeomID o2, int class2, int maxContacts,
                              dContactGeom* contact, int skip, const Settings& settings,
-                             detail::ThreadCache& cache) {
+                             detail::ThreadCache& cache, const CacheSource& pairCache) {
     // The plane is always the core's B; the core's A is o2 when o1 is the plane.
     const bool planeFirst = class1 == dPlaneClass;
     if (planeFirst && class2 == dPlaneClass) misuse("gdc::ode::collide: plane–plane is not a supported pair");
@@ -314,14 +339,16 @@ int collidePolytopeWithPlane(dGeomID o1, int class1, dGeomID o2, int class2, int
     const Polytope& polytope = *known;
     const HalfSpace halfSpace = halfSpaceOf(planeFirst ? o1 : o2, cache);
     const Manifold manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) {
-        return gdc::collide(polytope, pose, halfSpace, pairSettings);
+        return queryThrough(
+            pairCache, o1, o2, [&] { return gdc::collide(polytope, pose, halfSpace, pairSettings); },
+            [&](PairCache& entry) { return gdc::collide(polytope, pose, halfSpace, pairSettings, entry); });
     });
     if (manifold.empty()) return 0;
     return writeContacts(manifold, planeFirst, polytope.radius(), maxContacts, o1, o2, contact, skip);
 }
 
 int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip,
-                   const Settings& settings, detail::ThreadCache& cache) {
+                   const Settings& settings, detail::ThreadCache& cache, const CacheSource& pairCache) {
     const int maxContacts = std::min({flags & 0xffff, settings.maxContacts, kMaxManifoldPoints});
     if (maxContacts <= 0 || o1 == o2) return 0;
     if (!o1 || !o2) misuse("gdc::ode::collide got a null geom");
@@ -333,7 +360,8 @@ int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int
     const int class1 = dGeomGetClass(o1);
     const int class2 = dGeomGetClass(o2);
     if (class1 == dPlaneClass || class2 == dPlaneClass)
-        return collidePolytopeWithPlane(o1, class1, o2, class2, maxContacts, contact, skip, settings, cache);
+        return collidePolytopeWithPlane(o1, class1, o2, class2, maxContacts, contact, skip, settings, cache,
+                                        pairCache);
     const Pose pose1 = readPose(o1);
     const Pose pose2 = readPose(o2);
     const Polytope* known1 = polytopeFor(o1, class1, pose1, settings, cache);
@@ -343,17 +371,26 @@ int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int
     const Polytope& polytope2 = *known2;
     const bool swapped = comesFirst(pose2.position, o2, pose1.position, o1);
     const Manifold manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) {
-        return swapped ? gdc::collide(polytope2, pose2, polytope1, pose1, pairSettings)
-                       : gdc::collide(polytope1, pose1, polytope2, pose2, pairSettings);
+        return queryThrough(
+            pairCache, o1, o2,
+            [&] {
+                return swapped ? gdc::collide(polytope2, pose2, polytope1, pose1, pairSettings)
+                               : gdc::collide(polytope1, pose1, polytope2, pose2, pairSettings);
+            },
+            [&](PairCache& entry) {
+                return swapped ? gdc::collide(polytope2, pose2, polytope1, pose1, pairSettings, entry)
+                               : gdc::collide(polytope1, pose1, polytope2, pose2, pairSettings, entry);
+            });
     });
     if (manifold.empty()) return 0;
     return writeContacts(manifold, swapped, polytope1.radius() + polytope2.radius(), maxContacts, o1, o2,
                          contact, skip);
 }
 
-// The installed settings (`settings` null) or the caller's. ODE is C: no exception may cross
-// back into it.
-int collideGuarded(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip, const Settings* settings) {
+// The installed settings (`settings` null) or the caller's; the pair's cache `given`, or else one
+// from the table when this call can take its lease. ODE is C: no exception may cross back into it.
+int collideGuarded(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip, const Settings* settings,
+                   PairCache* given = nullptr) {
     detail::ThreadCache& cache = detail::threadCache();
     if (!settings) {
         static const Settings defaults;
@@ -364,7 +401,9 @@ int collideGuarded(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int
         }
     }
     try {
-        return collideChecked(o1, o2, flags, contact, skip, *settings, cache);
+        if (given) return collideChecked(o1, o2, flags, contact, skip, *settings, cache, CacheSource{given, nullptr});
+        detail::PairCacheTable::Lease lease(detail::pairCacheTable());
+        return collideChecked(o1, o2, flags, contact, skip, *settings, cache, CacheSource{nullptr, &lease});
     } catch (const InvalidInput& error) {  // its message already starts with "gdcontact: "
         dMessage(d_ERR_UNKNOWN, "%s (pair skipped)", error.what());
     } catch (const std::exception& error) {
@@ -380,6 +419,11 @@ int collideInstalled(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, i
 }
 
 }  // namespace
+
+int detail::collideWithPairCache(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip,
+                                 PairCache* cache) noexcept {
+    return collideGuarded(o1, o2, flags, contact, skip, nullptr, cache);
+}
 
 void install(const Settings& settings) {
     if (!detail::odeIsInitialized())
@@ -424,5 +468,16 @@ Pose poseOf(dGeomID geom) {
 }
 
 std::size_t liveConvexCount() { return detail::registeredConvexCount(); }
+
+void setPairCacheEnabled(bool enabled) { detail::pairCacheTable().setEnabled(enabled); }
+
+void setPairCacheCapacity(std::size_t entries) { detail::pairCacheTable().setCapacity(entries); }
+
+void clearPairCache() { detail::pairCacheTable().clear(); }
+
+PairCacheStats pairCacheStats() {
+    const detail::PairCacheTable::Stats stats = detail::pairCacheTable().stats();
+    return PairCacheStats{stats.entries, stats.capacity, stats.bytes, stats.repeated, stats.carried, stats.computed};
+}
 
 }  // namespace gdc::ode

@@ -19,6 +19,7 @@
 // instrumented. The pool's threads sleep on a condition variable between calls.
 #include <gdcontact/ode.hpp>
 
+#include "pair_cache_table.hpp"
 #include "state.hpp"
 
 #include <algorithm>
@@ -182,6 +183,7 @@ struct Slot {
     dGeomID o1;
     dGeomID o2;
     int count;
+    PairCache* cache;  // the pair's entry in the adapter's pair cache; nullptr: none
 };
 
 struct SlotBlock {
@@ -244,6 +246,9 @@ struct Call {
     Job& job;  // publishes each gdcontact pair to the pool as soon as it is listed
     bool serial;  // no pool: collide each gdcontact pair at once, as a near callback would
     std::exception_ptr failure;  // thrown inside ODE's broad phase, rethrown after it
+    // This call's hold on the pair cache: each gdcontact pair's entry is found here, on the calling
+    // thread, and handed to whichever thread collides the pair (one thread per pair: never shared).
+    detail::PairCacheTable::Lease& pairCache;
 };
 
 // Box, createConvex convex or plane (not plane–plane): the pairs collide() handles.
@@ -270,6 +275,7 @@ void addPair(Call& call, dGeomID o1, dGeomID o2) {
         slot.o1 = o1;
         slot.o2 = o2;
         slot.count = 0;
+        slot.cache = call.pairCache ? call.pairCache.find(o1, o2) : nullptr;
         scratch.gdcontactPairs = index + 1;
         call.job.available.store(index + 1, std::memory_order_release);
         return;
@@ -278,8 +284,10 @@ void addPair(Call& call, dGeomID o1, dGeomID o2) {
     // now on the calling thread, the contacts packed one pair after the other.
     const int room = ours ? call.slotSize : call.maxContacts;
     dContactGeom* out = scratch.packed.reserve(static_cast<std::size_t>(room));
-    const int count = ours ? collide(o1, o2, room, out, sizeof(dContactGeom))  // never throws
+    PairCache* cache = ours && call.pairCache ? call.pairCache.find(o1, o2) : nullptr;
+    const int count = ours ? detail::collideWithPairCache(o1, o2, room, out, sizeof(dContactGeom), cache)  // never throws
                            : dCollide(o1, o2, room, out, sizeof(dContactGeom));
+    if (cache) call.pairCache.count(*cache);
     scratch.pairs.push_back(Pair{o1, o2, scratch.packed.size, count, false});
     scratch.packed.size += static_cast<std::size_t>(std::max(count, 0));
 }
@@ -314,9 +322,9 @@ void collideRange(void* context, std::size_t begin, std::size_t end) {
         SlotBlock& block = phase.scratch->blocks[blockOf(i, offset)];
         Slot& slot = block.slots[offset];
         // collide() never throws: a failure becomes a dMessage and 0 contacts.
-        slot.count = collide(slot.o1, slot.o2, phase.slotSize,
-                             block.contacts.get() + offset * static_cast<std::size_t>(phase.slotSize),
-                             sizeof(dContactGeom));
+        slot.count = detail::collideWithPairCache(
+            slot.o1, slot.o2, phase.slotSize, block.contacts.get() + offset * static_cast<std::size_t>(phase.slotSize),
+            sizeof(dContactGeom), slot.cache);
     }
 }
 
@@ -375,7 +383,8 @@ void spaceCollide(dSpaceID space, int maxContactsPerPair, void* data, ContactHan
     WorkerPool& pool = workerPool();
     std::unique_lock<std::mutex> poolLock(pool.use, std::defer_lock);
     const bool parallel = threads > 1 && poolLock.try_lock();  // else serial: 1 thread, or pool busy
-    Call call{scratch, maxContactsPerPair, slotSize, detail::threadCache(), job, !parallel, nullptr};
+    detail::PairCacheTable::Lease pairCache(detail::pairCacheTable());
+    Call call{scratch, maxContactsPerPair, slotSize, detail::threadCache(), job, !parallel, nullptr, pairCache};
 
     // 1. The broad phase (ODE's, serial, on this thread): ODE's pairs collided at once; gdcontact's
     //    listed, and collided on the pool threads as soon as listed (2.) — or at once when serial.
@@ -398,7 +407,9 @@ void spaceCollide(dSpaceID space, int maxContactsPerPair, void* data, ContactHan
         if (pair.gdcontact) {
             std::size_t offset;
             SlotBlock& block = scratch.blocks[blockOf(pair.index, offset)];
-            count = block.slots[offset].count;
+            const Slot& slot = block.slots[offset];
+            count = slot.count;
+            if (slot.cache) pairCache.count(*slot.cache);
             contacts = block.contacts.get() + offset * static_cast<std::size_t>(slotSize);
         } else {
             count = pair.count;

@@ -1,5 +1,7 @@
 #include "state.hpp"
 
+#include "pair_cache_table.hpp"
+
 #include <gdcontact/ode.hpp>
 
 #include <algorithm>
@@ -264,6 +266,7 @@ void forgetConvex(const void* address) noexcept {
 // mismatch later keeps it from a new geom at that address — and the memory is still freed).
 void freeHook(void* pointer, dsizeint size) noexcept {
     State& s = state();
+    if (pointer) pairCacheTable().noteFreed(pointer);
     if (pointer && s.convexCount.load(std::memory_order_relaxed) != 0) {
         try {
             bool registered;
@@ -280,6 +283,8 @@ void freeHook(void* pointer, dsizeint size) noexcept {
     else
         std::free(pointer);  // ODE's own behaviour without a handler
 }
+
+}  // namespace
 
 // Puts freeHook in front of whatever free handler is active. Entries that existed while another
 // handler had replaced ours lose their trust (see ConvexEntry::trusted).
@@ -301,6 +306,8 @@ void ensureFreeHook() {
     s.previousFree.store(current, std::memory_order_release);
     dSetFreeHandler(&freeHook);
 }
+
+namespace {
 
 // Whether the geom at a distrusted entry's address is still the convex that entry describes:
 // its ODE AABB (computed by ODE from the points it was given) must match the hull's at its pose.

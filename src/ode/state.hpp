@@ -35,6 +35,10 @@ struct ConvexRecord {
     std::vector<unsigned> polygons;
 };
 
+/// Puts the adapter's free hook (the only notice of a geom's end ODE gives: it forgets the geom's
+/// hull and its pair-cache entries) in front of ODE's free handler, if it is not there already.
+void ensureFreeHook();
+
 /// Creates the dConvex for `record` (whose arrays must be filled) in `space` and registers it.
 dGeomID createRegisteredConvex(dSpaceID space, std::shared_ptr<ConvexRecord> record);
 
