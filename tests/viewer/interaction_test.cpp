@@ -1,5 +1,6 @@
 // Dropping, throwing, inspecting and debug drawing (samples/viewer/interaction): the maths on its
-// own, then as a person uses it in a real window (Xvfb + Mesa llvmpipe, started by the test).
+// own, then as a person uses it in a real window (Xvfb + Mesa llvmpipe, started by the test), alone
+// and side by side (both worlds get the added body; each view draws its own debug overlay).
 #include "interaction.hpp"
 #include "image.hpp"
 #include "ode_session.hpp"
@@ -368,4 +369,203 @@ TEST_CASE("an OBJ composite dropped into a scene is one body of the file's parts
     viewer.simulate(0.5);
     viewer.draw();
     CHECK(statistics(viewer.capture()).colouredPixels > 0);
+}
+
+// ---- side by side -----------------------------------------------------------------------------
+
+namespace {
+
+/// The pixel (window coordinates) of view `view` that shows world point `p`.
+Eigen::Vector2d pixelInView(Viewer& viewer, int view, const Vec3& p) {
+    const Viewport port = viewer.viewport(view);
+    return viewer.camera().project(p, port.width, port.height) + Eigen::Vector2d(port.x, port.y);
+}
+
+const scenes::Body* bodyNamed(Viewer& viewer, int view, const std::string& name) {
+    for (const auto& body : viewer.scene(view).bodies())
+        if (body.name == name) return &body;
+    return nullptr;
+}
+
+/// Index of `body` in the bodies of world `view`, or -1.
+long indexOf(Viewer& viewer, int view, dBodyID body) {
+    const auto& bodies = viewer.scene(view).bodies();
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+        if (bodies[i].body == body) return long(i);
+    return -1;
+}
+
+Image crop(const Image& image, const Viewport& port) {
+    Image out;
+    out.width = port.width;
+    out.height = port.height;
+    for (int y = port.y; y < port.y + port.height; ++y)
+        out.rgb.insert(out.rgb.end(), image.pixel(port.x, y), image.pixel(port.x, y) + 3 * std::size_t(port.width));
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("side by side: a dropped or thrown body goes into both worlds alike, and ctrl-click removes it from both") {
+    const std::string problem = test::ensureXServer();
+    if (!problem.empty()) return test::reportSkipped(problem);
+    OdeSession ode;
+    ViewerOptions options = testOptions("box_drop");
+    options.width = 640;
+    options.sideBySide = true;  // gdcontact left, ODE's native colliders right
+    Viewer viewer(options);
+    REQUIRE(viewer.viewCount() == 2);
+    viewer.simulate(0.1);
+    const std::size_t count = viewer.scene(0).bodies().size();
+    REQUIRE(viewer.scene(1).bodies().size() == count);
+    // A ground point beside the falling box, as each view shows it.
+    const OrbitCamera& camera = viewer.camera();
+    const Vec3 right = (camera.target() - camera.eye()).cross(Vec3::UnitZ()).normalized();
+    Vec3 ground = camera.target() + 0.8 * right;
+    ground.z() = 0.0;
+
+    for (int view : {0, 1}) {
+        SECTION(view == 0 ? "dropped in the left view" : "dropped in the right view") {
+            viewer.interaction().kind = SpawnKind::Rock;  // each rock differs: both worlds must get this one
+            const Eigen::Vector2d pixel = pixelInView(viewer, view, ground);
+            const dBodyID dropped = viewer.dropAt(pixel.x(), pixel.y());
+            REQUIRE(dropped != nullptr);
+            REQUIRE(viewer.scene(0).bodies().size() == count + 1);
+            REQUIRE(viewer.scene(1).bodies().size() == count + 1);
+            // The body returned is the pointed-at view's; the other world's twin is at the same
+            // index, with the same name (how the viewer pairs bodies), pose, velocity and shape.
+            CHECK(indexOf(viewer, view, dropped) == long(count));
+            const scenes::Body& a = viewer.scene(0).bodies().back();
+            const scenes::Body& b = viewer.scene(1).bodies().back();
+            CHECK(a.name == b.name);
+            CHECK(a.removable);
+            CHECK(b.removable);
+            CHECK_FALSE(b.measured);
+            CHECK((positionOf(a.body) - positionOf(b.body)).norm() == 0.0);
+            CHECK((positionOf(a.body).head<2>() - ground.head<2>()).norm() < 1e-6);
+            CHECK(velocityOf(b.body).norm() == 0.0);
+            REQUIRE(a.parts.size() == b.parts.size());
+            CHECK(a.parts.front().shape->vertices() == b.parts.front().shape->vertices());
+            dMass massA, massB;
+            dBodyGetMass(a.body, &massA);
+            dBodyGetMass(b.body, &massB);
+            CHECK(massA.mass == massB.mass);
+
+            // Each world's contacts land it; it rests on the ground in both.
+            viewer.simulate(1.5);
+            for (dBodyID body : {a.body, b.body}) {
+                CHECK(positionOf(body).z() > 0.0);
+                CHECK(velocityOf(body).norm() < 0.05);
+            }
+            // A drag of it reaches its twin.
+            const std::string name = a.name;
+            const Eigen::Vector2d on = pixelInView(viewer, 1 - view, positionOf(viewer.scene(1 - view).bodies().back().body));
+            REQUIRE(viewer.grab(on.x(), on.y()));
+            CHECK(viewer.drag(0).body() == a.body);
+            CHECK(viewer.drag(1).body() == b.body);
+            viewer.release();
+            // ctrl-click on it in either view removes it from both worlds, and nothing else.
+            REQUIRE(viewer.removeAt(on.x(), on.y()));
+            CHECK(viewer.scene(0).bodies().size() == count);
+            CHECK(viewer.scene(1).bodies().size() == count);
+            CHECK(bodyNamed(viewer, 0, name) == nullptr);
+            CHECK(bodyNamed(viewer, 1, name) == nullptr);
+        }
+    }
+    SECTION("thrown from the right view") {
+        viewer.interaction().kind = SpawnKind::Composite;
+        const Viewport port = viewer.viewport(1);
+        const double x = port.x + 0.6 * port.width, y = port.y + 0.4 * port.height;
+        const Ray ray = viewer.camera().rayThroughPixel(x - port.x, y - port.y, port.width, port.height);
+        const dBodyID thrown = viewer.throwAt(x, y, 7.0);
+        REQUIRE(thrown != nullptr);
+        CHECK(indexOf(viewer, 1, thrown) == long(count));
+        const scenes::Body& a = viewer.scene(0).bodies().back();
+        const scenes::Body& b = viewer.scene(1).bodies().back();
+        CHECK(a.name == b.name);
+        CHECK(a.parts.size() == 2);
+        CHECK((positionOf(a.body) - positionOf(b.body)).norm() == 0.0);
+        CHECK((positionOf(b.body) - ray.origin).cross(ray.direction).norm() < 1e-9);  // on the right view's ray
+        CHECK((velocityOf(a.body) - 7.0 * ray.direction).norm() < 1e-9);
+        CHECK((velocityOf(b.body) - 7.0 * ray.direction).norm() < 1e-9);
+    }
+    SECTION("reset and the side-by-side toggle rebuild both worlds without the added body") {
+        const Eigen::Vector2d pixel = pixelInView(viewer, 0, ground);
+        REQUIRE(viewer.dropAt(pixel.x(), pixel.y()) != nullptr);
+        viewer.resetScene();
+        CHECK(viewer.scene(0).bodies().size() == count);
+        CHECK(viewer.scene(1).bodies().size() == count);
+        REQUIRE(viewer.dropAt(pixel.x(), pixel.y()) != nullptr);
+        viewer.setSideBySide(false);
+        viewer.setSideBySide(true);
+        CHECK(viewer.scene(0).bodies().size() == count);
+        CHECK(viewer.scene(1).bodies().size() == count);
+    }
+    // The panel's column is no view: nothing is added from there.
+    CHECK(viewer.dropAt(-1.0, 10.0) == nullptr);
+}
+
+TEST_CASE("side by side: wireframe and bounding boxes are drawn in each view, with that view's world") {
+    const std::string problem = test::ensureXServer();
+    if (!problem.empty()) return test::reportSkipped(problem);
+    OdeSession ode;
+    ViewerOptions options = testOptions("brick_wall");
+    options.width = 640;
+    options.sideBySide = true;
+    options.contacts = false;  // coloured pixels are then the bodies' alone
+    options.labels = false;
+    Viewer viewer(options);
+    REQUIRE(viewer.viewCount() == 2);
+    viewer.simulate(0.1);
+    // A box dropped beside the wall, into both worlds.
+    const OrbitCamera& camera = viewer.camera();
+    const Vec3 right = (camera.target() - camera.eye()).cross(Vec3::UnitZ()).normalized();
+    Vec3 ground = camera.target() + 0.4 * right;
+    ground.z() = 0.0;
+    viewer.interaction().kind = SpawnKind::Box;
+    const Eigen::Vector2d pixel = pixelInView(viewer, 0, ground);
+    REQUIRE(viewer.dropAt(pixel.x(), pixel.y()) != nullptr);
+    viewer.simulate(0.3);
+
+    auto frame = [&] {
+        viewer.draw();
+        return viewer.capture();
+    };
+    const Image solid = frame();
+    viewer.interaction().debug.wireframe = true;
+    const Image wire = frame();
+    viewer.interaction().debug.bounds = true;
+    const Image both = frame();
+    viewer.interaction().debug.wireframe = false;
+    const Image boxes = frame();
+    writePng(both, std::string(GDCONTACT_VIEWER_TEST_OUTPUT) + "/side_by_side_drop_wireframe.png");
+    for (int view : {0, 1}) {
+        const Viewport port = viewer.viewport(view);
+        const long solidColoured = statistics(crop(solid, port)).colouredPixels;
+        const long wireColoured = statistics(crop(wire, port)).colouredPixels;
+        INFO("view " << view << ": coloured pixels solid " << solidColoured << ", wireframe " << wireColoured);
+        CHECK(wireColoured > 0);                    // the edges are drawn in this view too
+        CHECK(wireColoured < solidColoured / 2);    // and only the edges
+        CHECK(cyanPixels(crop(solid, port)) == 0);
+        CHECK(cyanPixels(crop(boxes, port)) > 100);  // each view has its bounding boxes
+        CHECK(cyanPixels(crop(both, port)) > 100);
+    }
+    // Nothing of either view's overlay spills into the panel's column or the gap between views.
+    const Viewport left = viewer.viewport(0), rightView = viewer.viewport(1);
+    REQUIRE(rightView.x > left.x + left.width);
+    CHECK(cyanPixels(crop(boxes, Viewport{left.x + left.width, 0, rightView.x - left.x - left.width, boxes.height})) == 0);
+}
+
+TEST_CASE("the help names one key for each action: t throws, x draws contacts through bodies") {
+    // No window needed: --help prints and exits before any is made.
+    const std::string command = std::string("\"") + GDCONTACT_VIEWER_EXECUTABLE + "\" --help";
+    std::string text;
+    if (FILE* pipe = popen(command.c_str(), "r")) {
+        char buffer[512];
+        while (std::fgets(buffer, sizeof buffer, pipe)) text += buffer;
+        CHECK(pclose(pipe) == 0);
+    }
+    CHECK_THAT(text, Catch::Contains("t throw from the camera") && Catch::Contains("x contacts through") &&
+                         Catch::Contains("d drop at the cursor") && Catch::Contains("v side by side"));
+    CHECK_THAT(text, !Catch::Contains("t contacts through"));
 }
