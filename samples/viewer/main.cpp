@@ -1,12 +1,14 @@
 // viewer — interactive (or headless) view of the paper's scenes.
 //   viewer [--scene NAME] [--method gdc|tracking|ode] [--side-by-side [--compare M]] [--convex] [--size WxH]
 //          [--frames N [--screenshot FILE.png [--fit]] [--realtime]] [--no-panel] [--no-contacts]
-//          [--contacts-through] [--no-labels] [--scripted] [--frames N --record-every K --record-dir DIR]
+//          [--contacts-through] [--no-labels] [--scripted] [--obj FILE.obj [--obj-hull] [--obj-scale S]]
+//          [--frames N --record-every K --record-dir DIR]
 #include "recorder.hpp"
 #include "viewer.hpp"
 
 #include <ode/ode.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -40,11 +42,16 @@ void usage(std::FILE* out) {
                  "  --hidden            do not show the window\n"
                  "  --record-every K    with --frames: write every K-th frame (and the last) as PNG\n"
                  "  --record-dir DIR    with --record-every: the frames' folder (frame_0000.png, ...)\n"
+                 "  --obj FILE          a shape of your own for d (drop) and t (throw): each object of the\n"
+                 "                      OBJ file one convex part (V-HACD/CoACD output), or with --obj-hull\n"
+                 "                      the hull of the whole file; --obj-scale S multiplies its coordinates\n"
                  "\n"
-                 "mouse: left-drag a body to pull it; ctrl/shift+click removes a brick; left/right-drag\n"
-                 "elsewhere orbits, middle-drag pans, wheel zooms. keys: space pause, s step, r reset,\n"
-                 "p push, c contacts, t contacts through bodies, v side by side, g dBox/dConvex,\n"
-                 "f fit view, h hide panel, esc quit\n");
+                 "mouse: left-drag a body to pull it; ctrl/shift+click removes a brick or an added body;\n"
+                 "shift+right-drag throws by flick; left/right-drag elsewhere orbits, middle-drag pans,\n"
+                 "wheel zooms. keys: space pause, s step, r reset, p push, c contacts, x contacts through\n"
+                 "bodies, v side by side, g dBox/dConvex, f fit view, h hide panel, esc quit;\n"
+                 "d drop at the cursor, t throw from the camera, 1-4 box / rock / composite / OBJ,\n"
+                 "i inspector, w wireframe, b bounding boxes (side by side, added bodies go to both worlds)\n");
 }
 
 }  // namespace
@@ -96,6 +103,15 @@ int main(int argc, char** argv) {
                 char* end = nullptr;
                 recording.every = int(std::strtol(n.c_str(), &end, 10));
                 if (*end != '\0' || recording.every <= 0) throw std::invalid_argument("--record-every wants a positive count, got '" + n + "'");
+            }
+            else if (arg == "--obj") options.obj = value();
+            else if (arg == "--obj-hull") options.objHull = true;
+            else if (arg == "--obj-scale") {
+                const std::string text = value();
+                char* end = nullptr;
+                options.objScale = std::strtod(text.c_str(), &end);
+                if (*end != '\0' || !(options.objScale > 0.0) || !std::isfinite(options.objScale))
+                    throw std::invalid_argument("--obj-scale wants a positive number, got '" + text + "'");
             }
             else if (arg == "--help" || arg == "-h") {
                 usage(stdout);
