@@ -1,4 +1,4 @@
-// collide() with a pair's cache: repeat the cached answer when nothing changed (exact), carry the
+// collide() / collideInto() with a pair's cache: repeat the cached answer when nothing changed (exact), carry the
 // cached contacts along when the pair moved less than Settings::manifoldReuseDistance (opt-in),
 // query otherwise. The query itself is the ordinary collide(); this file only decides whether to
 // run it.
@@ -33,7 +33,8 @@ double motion(const Pose& before, const Pose& now, double reachOfMoved) {
 // dropped; false when none is left, so that the caller queries.
 bool carry(const PairCache& cache, const Pose& poseA, const Pose& poseB, double margin, Manifold& out) {
     const Manifold& before = cache.manifold;
-    out = before;
+    out.featureA = before.featureA;
+    out.featureB = before.featureB;
     const Vec3 normalInA = cache.poseA.rotation.transpose() * before.normal;
     out.normal = (poseA.rotation * normalInA).normalized();
     out.pointCount = 0;
@@ -48,47 +49,47 @@ bool carry(const PairCache& cache, const Pose& poseA, const Pose& poseB, double 
     return out.pointCount > 0;
 }
 
-// The answer for a pair whose cache holds the same shapes and settings: repeated, carried, or
-// none (false: query).
-// `moved` bounds how far the pair moved since the cached query (see motion()).
+// The answer for a pair whose cache holds the same shapes and settings: the cache's own manifold
+// (repeated), `carried`, or none (nullptr: query).
 template <class Moved>
-bool answerFromCache(PairCache& cache, const Pose& poseA, const Pose& poseB, const Settings& settings,
-                     Moved moved, Manifold& out) {
+const Manifold* answerFromCache(PairCache& cache, const Pose& poseA, const Pose& poseB, const Settings& settings,
+                                Moved moved, Manifold& carried) {
     if (sameBits(poseA, cache.poseA) && sameBits(poseB, cache.poseB)) {
         cache.answer = CacheAnswer::Repeated;
-        out = cache.manifold;
-        return true;
+        return &cache.manifold;
     }
     // An empty cached answer is never carried: it says nothing of how near the pair came.
-    if (!(settings.manifoldReuseDistance > 0) || cache.manifold.empty()) return false;
-    if (!(moved() <= settings.manifoldReuseDistance)) return false;
-    if (!carry(cache, poseA, poseB, settings.margin, out)) return false;
+    if (!(settings.manifoldReuseDistance > 0) || cache.manifold.empty()) return nullptr;
+    if (!(moved() <= settings.manifoldReuseDistance)) return nullptr;
+    if (!carry(cache, poseA, poseB, settings.margin, carried)) return nullptr;
     cache.answer = CacheAnswer::Carried;
-    return true;
+    return &carried;
 }
 
+// A full query into the cache, which then describes it. Emptied first: it stays empty if the
+// query throws.
 template <class Query>
-Manifold queryAndFill(PairCache& cache, Query query) {
-    cache.kind = PairCache::Kind::Empty;  // stays empty if the query throws
+const Manifold& queryInto(PairCache& cache, PairCache::Kind kind, Query query) {
+    cache.kind = PairCache::Kind::Empty;
     cache.answer = CacheAnswer::Computed;
-    cache.manifold = query();
+    cache.manifold.assignUsed(query());
+    cache.kind = kind;
     return cache.manifold;
 }
 
 }  // namespace
 
-Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
-                 const Settings& settings, PairCache& cache) {
-    Manifold answer;
+const Manifold& collideInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
+                            const Settings& settings, PairCache& cache, Manifold& carried) {
     if (cache.kind == PairCache::Kind::Polytopes && cache.shapeA == a.fingerprint() &&
-        cache.shapeB == b.fingerprint() && cache.settings == settings &&
-        answerFromCache(cache, poseA, poseB, settings, [&] {
+        cache.shapeB == b.fingerprint() && cache.settings == settings) {
+        const Manifold* answer = answerFromCache(cache, poseA, poseB, settings, [&] {
             // B relative to A: its points in A's frame, before and now.
             return motion(cache.poseA.relative(cache.poseB), poseA.relative(poseB), reach(b));
-        }, answer))
-        return answer;
-    answer = queryAndFill(cache, [&] { return collide(a, poseA, b, poseB, settings); });
-    cache.kind = PairCache::Kind::Polytopes;
+        }, carried);
+        if (answer) return *answer;
+    }
+    const Manifold& answer = queryInto(cache, PairCache::Kind::Polytopes, [&] { return collide(a, poseA, b, poseB, settings); });
     cache.shapeA = a.fingerprint();
     cache.shapeB = b.fingerprint();
     cache.poseA = poseA;
@@ -97,17 +98,17 @@ Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const 
     return answer;
 }
 
-Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings,
-                 PairCache& cache) {
+const Manifold& collideInto(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings,
+                            PairCache& cache, Manifold& carried) {
     static const Pose world;  // the half-space's frame: B does not move
-    Manifold answer;
     if (cache.kind == PairCache::Kind::HalfSpace && cache.shapeA == a.fingerprint() &&
         sameBits(cache.halfSpaceNormal, b.normal) && sameBits(cache.halfSpaceOffset, b.offset) &&
-        cache.settings == settings &&
-        answerFromCache(cache, poseA, world, settings, [&] { return motion(cache.poseA, poseA, reach(a)); }, answer))
-        return answer;
-    answer = queryAndFill(cache, [&] { return collide(a, poseA, b, settings); });
-    cache.kind = PairCache::Kind::HalfSpace;
+        cache.settings == settings) {
+        const Manifold* answer = answerFromCache(cache, poseA, world, settings,
+                                                 [&] { return motion(cache.poseA, poseA, reach(a)); }, carried);
+        if (answer) return *answer;
+    }
+    const Manifold& answer = queryInto(cache, PairCache::Kind::HalfSpace, [&] { return collide(a, poseA, b, settings); });
     cache.shapeA = a.fingerprint();
     cache.shapeB = 0;
     cache.poseA = poseA;
@@ -116,6 +117,18 @@ Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b, const
     cache.halfSpaceOffset = b.offset;
     cache.settings = settings;
     return answer;
+}
+
+Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
+                 const Settings& settings, PairCache& cache) {
+    Manifold carried;
+    return collideInto(a, poseA, b, poseB, settings, cache, carried);
+}
+
+Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings,
+                 PairCache& cache) {
+    Manifold carried;
+    return collideInto(a, poseA, b, settings, cache, carried);
 }
 
 }  // namespace gdc

@@ -113,7 +113,8 @@ private:
         if (!atRest()) return 0.0;
         double worst = 0.0;
         for (const Body& body : bodies())
-            worst = std::max(worst, (bodyPosition(body.body) - body.restPose.position).norm());
+            if (body.measured)  // a body a person threw in is no brick of the wall
+                worst = std::max(worst, (bodyPosition(body.body) - body.restPose.position).norm());
         return worst;
     }
 

@@ -157,6 +157,7 @@ private:
     double stackHeight() const {
         double height = 0.0;
         for (const Body& body : bodies()) {
+            if (!body.measured) continue;  // a body a person dropped in is not part of the stack
             for (const Part& part : body.parts)
                 for (const Vec3& v : part.shape->vertices()) height = std::max(height, worldHeight(part, v));
         }

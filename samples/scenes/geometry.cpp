@@ -126,6 +126,12 @@ double Random::uniform(double low, double high) {
     return low + (high - low) * unit;
 }
 
+std::pair<std::shared_ptr<const Polytope>, Vec3> centredOnCentroid(const Polytope& shape) {
+    std::vector<Vec3> points;
+    for (const Vec3& v : shape.vertices()) points.push_back(v - shape.centroid());
+    return {std::make_shared<const Polytope>(Polytope::fromPoints(points)), shape.centroid()};
+}
+
 std::shared_ptr<const Polytope> makeBox(const Vec3& halfExtents) {
     return std::make_shared<const Polytope>(Polytope::box(halfExtents));
 }

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace gdc::scenes {
@@ -53,6 +54,11 @@ std::shared_ptr<const Polytope> makePrism(int sides, double radius, double halfH
 /// random belt of points between them (radius up to `radius`).
 std::shared_ptr<const Polytope> makeIrregularSlab(Random& random, double radius, double halfHeight);
 std::shared_ptr<const Polytope> makeBox(const Vec3& halfExtents);
+/// The same shape moved so that its volume centroid is the origin, and where that centroid was.
+/// ODE assumes a dConvex's own origin lies inside it (its sanity checks warn otherwise, and its
+/// native colliders measure from there), so a part given anywhere is made about its centroid and
+/// placed by its offset.
+std::pair<std::shared_ptr<const Polytope>, Vec3> centredOnCentroid(const Polytope& shape);
 
 /// One convex part of a composite, placed in the composite's frame.
 struct PlacedPart {

@@ -330,6 +330,18 @@ bool Scene::removeBody(dBodyID body) {
     return true;
 }
 
+dBodyID Scene::spawnBody(const std::string& name, const std::vector<PlacedPart>& parts, double density,
+                         const Pose& pose, const Vec3& linearVelocity, std::array<float, 3> colour) {
+    if (!world_) reset();
+    if (!pose.isFinite() || !linearVelocity.allFinite())
+        throw std::invalid_argument("spawnBody: pose and velocity must be finite");
+    Body& body = addBody(name, parts, density, pose, colour);
+    body.removable = true;
+    body.measured = false;  // the scene's verdict is about its own bodies, not a visitor's
+    dBodySetLinearVel(body.body, linearVelocity.x(), linearVelocity.y(), linearVelocity.z());
+    return body.body;
+}
+
 void Scene::applyPush(double) {}
 
 void Scene::markRest() {

@@ -184,6 +184,12 @@ public:
     virtual double pushForce() const { return 0.0; }
     /// Removes a removable body (brick) and its geoms. Returns false if it is not one.
     bool removeBody(dBodyID body);
+    /// Adds a dynamic body while the scene runs (a person dropping or throwing one in the viewer).
+    /// Made as the scene makes its own (addBody), so it collides by whichever method the scene
+    /// runs; it is removable, not counted in the quality measures, and starts with
+    /// `linearVelocity` (m/s). reset() rebuilds the scene without it. Returns the new body.
+    dBodyID spawnBody(const std::string& name, const std::vector<PlacedPart>& parts, double density,
+                      const gdc::Pose& pose, const gdc::Vec3& linearVelocity, std::array<float, 3> colour);
 
     const std::vector<ContactSample>& lastContacts() const { return contacts_; }
     double lastCollisionSeconds() const { return current_.collisionSeconds; }

@@ -1,11 +1,14 @@
 // viewer — interactive (or headless) view of the paper's scenes.
 //   viewer [--scene NAME] [--method gdc|tracking|ode] [--side-by-side [--compare M]] [--convex] [--size WxH]
 //          [--frames N [--screenshot FILE.png [--fit]] [--realtime]] [--no-panel] [--no-contacts]
-//          [--contacts-through] [--no-labels] [--scripted]
+//          [--contacts-through] [--no-labels] [--scripted] [--obj FILE.obj [--obj-hull] [--obj-scale S]]
+//          [--frames N --record-every K --record-dir DIR]
+#include "recorder.hpp"
 #include "viewer.hpp"
 
 #include <ode/ode.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -37,17 +40,25 @@ void usage(std::FILE* out) {
                  "  --scripted          let the scene's scripted user act (builder, remover, push)\n"
                  "  --fit               with --screenshot: frame the bodies where they are at the end\n"
                  "  --hidden            do not show the window\n"
+                 "  --record-every K    with --frames: write every K-th frame (and the last) as PNG\n"
+                 "  --record-dir DIR    with --record-every: the frames' folder (frame_0000.png, ...)\n"
+                 "  --obj FILE          a shape of your own for d (drop) and t (throw): each object of the\n"
+                 "                      OBJ file one convex part (V-HACD/CoACD output), or with --obj-hull\n"
+                 "                      the hull of the whole file; --obj-scale S multiplies its coordinates\n"
                  "\n"
-                 "mouse: left-drag a body to pull it; ctrl/shift+click removes a brick; left/right-drag\n"
-                 "elsewhere orbits, middle-drag pans, wheel zooms. keys: space pause, s step, r reset,\n"
-                 "p push, c contacts, t contacts through bodies, v side by side, g dBox/dConvex,\n"
-                 "f fit view, h hide panel, esc quit\n");
+                 "mouse: left-drag a body to pull it; ctrl/shift+click removes a brick or an added body;\n"
+                 "shift+right-drag throws by flick; left/right-drag elsewhere orbits, middle-drag pans,\n"
+                 "wheel zooms. keys: space pause, s step, r reset, p push, c contacts, x contacts through\n"
+                 "bodies, v side by side, g dBox/dConvex, f fit view, h hide panel, esc quit;\n"
+                 "d drop at the cursor, t throw from the camera, 1-4 box / rock / composite / OBJ,\n"
+                 "i inspector, w wireframe, b bounding boxes (side by side, added bodies go to both worlds)\n");
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
     gdc::viewer::ViewerOptions options;
+    gdc::viewer::RecordOptions recording;
     try {
         for (int i = 1; i < argc; ++i) {
             const std::string arg = argv[i];
@@ -86,6 +97,22 @@ int main(int argc, char** argv) {
             else if (arg == "--scripted") options.scripted = true;
             else if (arg == "--hidden") options.visible = false;
             else if (arg == "--fit") options.fit = true;
+            else if (arg == "--record-dir") recording.directory = value();
+            else if (arg == "--record-every") {
+                const std::string n = value();
+                char* end = nullptr;
+                recording.every = int(std::strtol(n.c_str(), &end, 10));
+                if (*end != '\0' || recording.every <= 0) throw std::invalid_argument("--record-every wants a positive count, got '" + n + "'");
+            }
+            else if (arg == "--obj") options.obj = value();
+            else if (arg == "--obj-hull") options.objHull = true;
+            else if (arg == "--obj-scale") {
+                const std::string text = value();
+                char* end = nullptr;
+                options.objScale = std::strtod(text.c_str(), &end);
+                if (*end != '\0' || !(options.objScale > 0.0) || !std::isfinite(options.objScale))
+                    throw std::invalid_argument("--obj-scale wants a positive number, got '" + text + "'");
+            }
             else if (arg == "--help" || arg == "-h") {
                 usage(stdout);
                 return 0;
@@ -93,6 +120,11 @@ int main(int argc, char** argv) {
         }
         if (!options.screenshot.empty() && options.frames <= 0)
             throw std::invalid_argument("--screenshot needs --frames N");
+        if (recording.every > 0 && (options.frames <= 0 || recording.directory.empty() || options.realtime ||
+                                    !options.screenshot.empty()))
+            throw std::invalid_argument("--record-every needs --frames N and --record-dir DIR, without --realtime or --screenshot");
+        if (recording.every == 0 && !recording.directory.empty())
+            throw std::invalid_argument("--record-dir needs --record-every K");
     } catch (const std::exception& e) {
         std::fprintf(stderr, "viewer: %s\n", e.what());
         usage(stderr);
@@ -103,7 +135,12 @@ int main(int argc, char** argv) {
     int status = 0;
     try {
         gdc::viewer::Viewer viewer(options);
-        status = viewer.run();
+        if (recording.every > 0) {
+            const int written = gdc::viewer::record(viewer, options.frames, recording);
+            std::printf("scene %s: %d frames recorded in %s\n", options.scene.c_str(), written, recording.directory.c_str());
+        } else {
+            status = viewer.run();
+        }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "viewer: %s\n", e.what());
         status = 1;

@@ -33,6 +33,8 @@ constexpr std::size_t kPlotSamples = 400;
 constexpr int kPanelWidth = 400;     // pixels
 constexpr float kLabelColumn = 160.0f;
 constexpr int kViewGap = 2;          // pixels between the two views side by side
+constexpr double kSlowestFlick = 0.5;  // m/s: slower, a shift+right release is no throw
+constexpr double kFastestThrow = 40.0;  // m/s: the throw speed slider's top
 const scenes::Method kMethods[] = {scenes::Method::Gdcontact, scenes::Method::Tracking, scenes::Method::Ode};
 const char* const kMethodLabels[] = {"gdcontact", "contact tracking", "ODE native"};
 
@@ -99,6 +101,11 @@ Viewer::Viewer(const ViewerOptions& options) : options_(options), camera_(Vec3::
     showContacts_ = options.contacts;
     contactsThrough_ = options.contactsThrough;
     if (options.width < 64 || options.height < 64) throw std::invalid_argument("window must be at least 64×64 pixels");
+    // Before any window: a bad file is reported as such, with or without an X server.
+    if (!options.obj.empty() &&
+        !interaction_.loadObj(options.obj, options.objHull ? scenes::ObjLayout::Hull : scenes::ObjLayout::PartPerObject,
+                              options.objScale))
+        throw std::runtime_error(interaction_.objStatus());
     glfwSetErrorCallback(reportGlfwError);
     if (!glfwInit()) throw std::runtime_error("cannot initialise GLFW (no X server? set DISPLAY or run under xvfb-run)");
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 2);
@@ -181,6 +188,7 @@ void Viewer::buildWorlds(const std::string& name, bool keepSettings) {
     }
     drag_.forget();
     shapes_.clear();
+    inspected_.clear();  // bodies of the old worlds
     scene_ = std::move(primary);
     compare_ = std::move(second);
     options_.scene = name;
@@ -231,6 +239,7 @@ void Viewer::setConvexBoxes(bool convex) {
 }
 
 void Viewer::resetScene() {
+    inspected_.clear();
     for (int view = 0; view < viewCount(); ++view) {
         mutableDrag(view).forget();
         mutableShapes(view).clear();
@@ -405,6 +414,7 @@ bool Viewer::removeAt(double x, double y) {
         if (targets[other] == nullptr) continue;
         if (drag(other).body() == targets[other]) mutableDrag(other).forget();
         mutableShapes(other).clear();  // the body's geoms are destroyed; ODE may hand their addresses out again
+        if (other < int(inspected_.size()) && inspected_[other] == targets[other]) inspected_[other] = nullptr;
         const bool gone = scene(other).removeBody(targets[other]);
         if (other == view) removed = gone;
     }
@@ -414,10 +424,63 @@ bool Viewer::removeAt(double x, double y) {
 
 void Viewer::push(double seconds) { pushRemaining_ = std::max(pushRemaining_, seconds); }
 
+dBodyID Viewer::addToWorlds(const Spawn& spawn, int view) {
+    // Appended to every world alike: the new body has the same index in each world's bodies(), and
+    // the same name, so correspondingBody() pairs it as it pairs the scene's own.
+    dBodyID added = nullptr;
+    for (int world = 0; world < viewCount(); ++world) {
+        dBodyID body = addSpawn(scene(world), spawn);
+        if (world == view) added = body;
+    }
+    refreshShapes();
+    return added;
+}
+
+dBodyID Viewer::dropAt(double x, double y) {
+    refreshShapes();
+    const int view = viewAt(x, y);
+    if (view < 0) return nullptr;
+    // Placed on what the view under the cursor shows (side by side, the other world gets the body
+    // at the same pose, whatever its bodies have done since). Within ten times the camera's
+    // distance: farther, the body would land out of sight.
+    const auto spawn = interaction_.planDrop(scene(view), shapes(view), rayThrough(view, x, y), 10.0 * camera_.distance());
+    return spawn ? addToWorlds(*spawn, view) : nullptr;
+}
+
+dBodyID Viewer::throwAt(double x, double y, double speed) {
+    const int view = viewAt(x, y);
+    return view < 0 ? nullptr : throwFrom(view, x, y, speed);
+}
+
+dBodyID Viewer::throwFrom(int view, double x, double y, double speed) {
+    return addToWorlds(interaction_.planThrow(scene(view), rayThrough(view, x, y), speed), view);
+}
+
+std::optional<Inspection> Viewer::inspectAt(double x, double y) {
+    refreshShapes();
+    const int view = viewAt(x, y);
+    if (view < 0) return std::nullopt;
+    return inspectAlong(scene(view), shapes(view), rayThrough(view, x, y));
+}
+
+void Viewer::findInspected() {
+    inspected_.assign(viewCount(), nullptr);
+    if (!interaction_.inspector) return;
+    const int view = viewAt(lastX_, lastY_);
+    if (view < 0) return;
+    refreshShapes();
+    const auto hit = shapes(view).pick(rayThrough(view, lastX_, lastY_));
+    if (!hit || shapes(view).shapes()[hit->shape].body == nullptr) return;
+    const dBodyID body = shapes(view).shapes()[hit->shape].body;
+    for (int other = 0; other < viewCount(); ++other)
+        inspected_[other] = other == view ? body : correspondingBody(view, body, other);
+}
+
 FrameInput Viewer::snapshot(int view) {
     refreshShapes(view);
     const SceneShapes& drawn = shapes(view);
     const SpringDrag& spring = drag(view);
+    const dBodyID inspected = view < int(inspected_.size()) ? inspected_[view] : nullptr;
     FrameInput in;
     in.camera = &camera_;
     // Window coordinates (top-left origin) to framebuffer pixels (bottom-left origin, maybe HiDPI).
@@ -437,7 +500,8 @@ FrameInput Viewer::snapshot(int view) {
     for (const auto& shape : drawn.shapes()) {
         auto it = shape.body ? colours.find(shape.body) : colours.end();
         in.colours.push_back(it != colours.end() ? it->second : Colour{0.62f, 0.62f, 0.64f});
-        in.highlighted.push_back(shape.body != nullptr && shape.body == spring.body());
+        // The dragged body, and with the inspector on the inspected one (in each view its own twin).
+        in.highlighted.push_back(shape.body != nullptr && (shape.body == spring.body() || shape.body == inspected));
     }
     if (showContacts_)
         for (const auto& c : scene(view).lastContacts()) in.contacts.push_back({c.position, c.normal, c.depth});
@@ -455,6 +519,21 @@ void Viewer::buildPanel() {
     ImGui::NewFrame();
     if (showPanel_) drawPanel();
     if (options_.labels) drawOverlay();
+    findInspected();
+    if (interaction_.inspector) {
+        const int view = viewAt(lastX_, lastY_);
+        if (view < 0) {
+            interaction_.inspectorWindow(nullptr, shapes_, camera_, 0.0, 0.0, 1, 1);
+        } else {
+            const Viewport v = viewport(view);
+            std::string label;
+            if (viewCount() > 1)
+                label = std::string(view == 0 ? "left view, " : "right view, ") +
+                        kMethodLabels[methodIndex(scene(view).method())];
+            interaction_.inspectorWindow(&scene(view), shapes(view), camera_, lastX_ - v.x, lastY_ - v.y, v.width,
+                                         v.height, label);
+        }
+    }
     ImGui::Render();  // only builds vertex lists; the GL calls come in RenderDrawData
 }
 
@@ -477,7 +556,13 @@ void Viewer::clearWindow() {
 
 void Viewer::render(const std::vector<FrameInput>& frames) {
     clearWindow();
-    for (const FrameInput& frame : frames) renderer_.render(frame);
+    // Each view as the renderer draws it, then its debug overlay (wireframe, bounding boxes) with
+    // that view's world, camera and viewport; the panel over all of them.
+    std::vector<DrawShape> planes;
+    for (const FrameInput& frame : frames) {
+        renderer_.render(rendererInput(frame, interaction_.debug, planes));
+        drawDebugOverlay(frame, interaction_.debug);
+    }
     ImGui_ImplOpenGL2_RenderDrawData(ImGui::GetDrawData());
 }
 
@@ -587,7 +672,7 @@ void Viewer::drawPanel() {
     // Overlays
     ImGui::Checkbox("contacts (c)", &showContacts_);
     ImGui::SameLine();
-    ImGui::Checkbox("through bodies (t)", &contactsThrough_);
+    ImGui::Checkbox("through bodies (x)", &contactsThrough_);
     float exaggeration = float(depthExaggeration_);
     if (ImGui::SliderFloat("depth drawn", &exaggeration, 1.0f, 100.0f, "x%.0f (magnified)", ImGuiSliderFlags_Logarithmic))
         depthExaggeration_ = exaggeration;
@@ -611,11 +696,12 @@ void Viewer::drawPanel() {
     plot("drift", drift_, "mm");
     plot("collision", collisionMs_, "ms");
     plot("solver", solverMs_, "ms");
-    ImGui::TextDisabled("drag: pull body   ctrl+click: remove brick");
+    interaction_.panelSection();
+    ImGui::TextDisabled("drag: pull body   ctrl+click: remove brick/added");
     ImGui::TextDisabled("right drag: orbit   middle: pan   wheel: zoom");
     ImGui::TextDisabled("space pause  s step  r reset  p push  f fit");
     ImGui::TextDisabled("v side by side  g dBox/dConvex  h panel");
-    ImGui::TextDisabled("c contacts  t contacts through bodies");
+    ImGui::TextDisabled("c contacts  x contacts through bodies");
     ImGui::PopItemWidth();
     ImGui::End();
 }
@@ -805,6 +891,14 @@ void Viewer::onMouseButton(GLFWwindow* window, int button, int action, int mods)
     v.lastY_ = y;
     if (action == GLFW_RELEASE) {
         if (v.gesture_ == Gesture::Drag) v.release();
+        if (v.gesture_ == Gesture::Flick) {
+            v.flick_.move(x, y, glfwGetTime());
+            // A release without motion is no throw; a wild flick is held to the panel's top speed.
+            // From the view the flick began in (side by side: into both worlds), wherever it ends.
+            const double speed = flickSpeed(v.camera_, v.viewport(v.gestureView_).height, v.flick_.velocity());
+            if (speed >= kSlowestFlick) v.throwFrom(v.gestureView_, x, y, std::min(speed, kFastestThrow));
+            v.flick_.end();
+        }
         v.gesture_ = Gesture::None;
         return;
     }
@@ -815,6 +909,10 @@ void Viewer::onMouseButton(GLFWwindow* window, int button, int action, int mods)
         } else {
             v.gesture_ = v.grab(x, y) ? Gesture::Drag : Gesture::Orbit;
         }
+    } else if (button == GLFW_MOUSE_BUTTON_RIGHT && (mods & GLFW_MOD_SHIFT) && v.viewAt(x, y) >= 0) {
+        v.gesture_ = Gesture::Flick;  // a throw: the cursor's speed at release sets the body's
+        v.gestureView_ = v.viewAt(x, y);
+        v.flick_.begin(x, y, glfwGetTime());
     } else if (button == GLFW_MOUSE_BUTTON_RIGHT) {
         v.gesture_ = Gesture::Orbit;
     } else if (button == GLFW_MOUSE_BUTTON_MIDDLE) {
@@ -832,6 +930,7 @@ void Viewer::onCursor(GLFWwindow* window, double x, double y) {
         case Gesture::Orbit: v.camera_.orbit(-3.0 * dx / height, 3.0 * dy / height); break;
         case Gesture::Pan: v.camera_.pan(-dx / height, dy / height); break;
         case Gesture::Drag: v.dragTo(x, y); break;
+        case Gesture::Flick: v.flick_.move(x, y, glfwGetTime()); break;
         case Gesture::None: break;
     }
 }
@@ -852,11 +951,19 @@ void Viewer::onKey(GLFWwindow* window, int key, int, int action, int) {
         case GLFW_KEY_R: v.resetScene(); break;
         case GLFW_KEY_V: v.setSideBySide(!v.sideBySide()); break;
         case GLFW_KEY_G: v.setConvexBoxes(!v.convexBoxes()); break;
-        case GLFW_KEY_T: v.contactsThrough_ = !v.contactsThrough_; break;
+        case GLFW_KEY_X: v.contactsThrough_ = !v.contactsThrough_; break;  // x-ray: contacts through bodies
         case GLFW_KEY_P: v.push(); break;
         case GLFW_KEY_C: v.showContacts_ = !v.showContacts_; break;
         case GLFW_KEY_H: v.showPanel_ = !v.showPanel_; break;
         case GLFW_KEY_F: v.fitCamera(); break;
+        case GLFW_KEY_D: v.dropAt(v.lastX_, v.lastY_); break;
+        case GLFW_KEY_T: v.throwAt(v.lastX_, v.lastY_, v.interaction_.throwSpeed); break;
+        case GLFW_KEY_1: case GLFW_KEY_2: case GLFW_KEY_3: case GLFW_KEY_4:
+            v.interaction_.kind = kSpawnKinds[key - GLFW_KEY_1];
+            break;
+        case GLFW_KEY_I: v.interaction_.inspector = !v.interaction_.inspector; break;
+        case GLFW_KEY_W: v.interaction_.debug.wireframe = !v.interaction_.debug.wireframe; break;
+        case GLFW_KEY_B: v.interaction_.debug.bounds = !v.interaction_.debug.bounds; break;
         default: break;
     }
 }

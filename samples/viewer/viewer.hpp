@@ -4,9 +4,10 @@
 // Side by side, the same scene runs in two worlds at once — one with the primary contact method
 // (gdcontact by default), one with a second (ODE's native colliders by default) — drawn in two
 // viewports with one shared camera. Every action of the user (drag, remove, push, reset, solver
-// settings) is applied to the corresponding body in both worlds, so the difference between the
-// two pictures is the contacts' doing. Bodies correspond by their index in Scene::bodies(): both
-// worlds are built by the same deterministic build() and every removal is applied to both.
+// settings, a dropped or thrown body) is applied to the corresponding body in both worlds, so the
+// difference between the two pictures is the contacts' doing. Bodies correspond by their index in
+// Scene::bodies(): both worlds are built by the same deterministic build(), every removal is
+// applied to both, and a body a person adds is appended to both at the same pose and velocity.
 //
 // Interactively the simulation runs on its own thread, in fixed steps paced by a wall-clock
 // accumulator. The window thread holds the scene lock only to handle input, build the panel and
@@ -18,6 +19,7 @@
 
 #include "camera.hpp"
 #include "image.hpp"
+#include "interaction.hpp"
 #include "renderer.hpp"
 #include "scene_shapes.hpp"
 #include "spring_drag.hpp"
@@ -30,6 +32,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <vector>
 
 struct GLFWwindow;
 
@@ -56,6 +59,9 @@ struct ViewerOptions {
     bool convexBoxes = false;     // box-shaped bodies as dConvex (gdc::ode::createConvex), not dBox
     bool contactsThrough = false; // contact marks drawn over the bodies in front of them
     bool labels = true;      // method, verdict and contact legend drawn over the picture
+    std::string obj;         // OBJ file whose shape the drop and throw add (--obj)
+    bool objHull = false;    // the whole file as one convex hull, not one part per object
+    double objScale = 1.0;   // OBJ coordinates × this = metres
 };
 
 /// A rectangle of the window in window coordinates (pixels, top-left origin, as the mouse).
@@ -143,6 +149,17 @@ public:
     bool removeAt(double x, double y);
     /// The paper's downward push on the top object, for `seconds` of simulated time.
     void push(double seconds = 0.5);
+    /// Adds a body of interaction().kind over the point under the cursor (key d), or in front of
+    /// the camera flying along the cursor ray at `speed` m/s (key t, shift+right flick), placed by
+    /// the view under the cursor. Side by side, the same body (shape, pose, velocity, name) is
+    /// added to both worlds. Returns the new body of the view under the cursor; null when the
+    /// cursor is on no view, or (drop) nothing is under it to drop onto.
+    dBodyID dropAt(double x, double y);
+    dBodyID throwAt(double x, double y, double speed);
+    /// The body under the cursor, in the view under it, with its mass, velocities and contacts
+    /// (the inspector window).
+    std::optional<Inspection> inspectAt(double x, double y);
+    Interaction& interaction() { return interaction_; }
 
     const OrbitCamera& camera() const { return camera_; }
     OrbitCamera& camera() { return camera_; }
@@ -175,6 +192,11 @@ private:
     Ray rayThrough(int view, double x, double y) const;
     /// The body of world `to` that is body `body` of world `from` (same index in bodies()).
     dBodyID correspondingBody(int from, dBodyID body, int to);
+    /// Adds `spawn` to every world; returns the body added to world `view`.
+    dBodyID addToWorlds(const Spawn& spawn, int view);
+    dBodyID throwFrom(int view, double x, double y, double speed);
+    /// With the inspector on: the body under the cursor and its twin, highlighted in each view.
+    void findInspected();
     void drawOverlay();
     void drawVerdictPanel();
     void fitCamera();
@@ -216,10 +238,15 @@ private:
     int method_ = 0;
     FrameTimes times_;
 
+    // what a drop or throw adds, the inspector and the debug drawing (wireframe, bounding boxes)
+    Interaction interaction_;
+
     // mouse state for camera gestures
-    enum class Gesture { None, Orbit, Pan, Drag } gesture_ = Gesture::None;
+    FlickTracker flick_;
+    enum class Gesture { None, Orbit, Pan, Drag, Flick } gesture_ = Gesture::None;
     double lastX_ = 0.0, lastY_ = 0.0;
-    int gestureView_ = 0;  // the view a drag began in: its viewport maps the cursor to rays
+    int gestureView_ = 0;  // the view a drag or flick began in: its viewport maps the cursor to rays
+    std::vector<dBodyID> inspected_;  // per view, the inspector's body (null: none)
     bool contactsThrough_ = false;
 
     // live plots (last few seconds of each measure)

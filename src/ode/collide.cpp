@@ -250,12 +250,18 @@ struct CacheSource {
     }
 };
 
-// The core query, through the pair's cache when there is one.
+// The core query, through the pair's cache when there is one. The answer by reference — the
+// cache's own manifold, or `storage` — so that a repeated answer is read where it lies (a
+// Manifold's copies were a third of a repeated answer's cost, tests/ode/adapter_overhead.sh).
 template <class Query, class CachedQuery>
-Manifold queryThrough(const CacheSource& source, dGeomID o1, dGeomID o2, Query query, CachedQuery cachedQuery) {
+const Manifold& queryThrough(const CacheSource& source, dGeomID o1, dGeomID o2, Manifold& storage, Query query,
+                             CachedQuery cachedQuery) {
     PairCache* cache = source.find(o1, o2);
-    if (!cache) return query();
-    Manifold manifold = cachedQuery(*cache);
+    if (!cache) {
+        storage.assignUsed(query());
+        return storage;
+    }
+    const Manifold& manifold = cachedQuery(*cache, storage);
     source.count(cache);
     return manifold;
 }
@@ -319,7 +325,7 @@ int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int ma
 
 // The settings for one core call: `settings`, or a copy with the caller's smaller limit.
 template <class Collide>
-Manifold collideLimited(const Settings& settings, int maxContacts, Collide collideWith) {
+decltype(auto) collideLimited(const Settings& settings, int maxContacts, Collide collideWith) {
     if (settings.maxContacts == maxContacts) return collideWith(settings);  // the common case: no copy
     Settings pairSettings = settings;
     pairSettings.maxContacts = maxContacts;
@@ -338,10 +344,12 @@ int collidePolytopeWithPlane(dGeomID o1, int class1, dGeomID o2, int class2, int
     if (!known) return collideWithOde(o1, class1, o2, class2, maxContacts, contact, skip);
     const Polytope& polytope = *known;
     const HalfSpace halfSpace = halfSpaceOf(planeFirst ? o1 : o2, cache);
-    const Manifold manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) {
+    const Manifold& manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) -> const Manifold& {
         return queryThrough(
-            pairCache, o1, o2, [&] { return gdc::collide(polytope, pose, halfSpace, pairSettings); },
-            [&](PairCache& entry) { return gdc::collide(polytope, pose, halfSpace, pairSettings, entry); });
+            pairCache, o1, o2, cache.scratch, [&] { return gdc::collide(polytope, pose, halfSpace, pairSettings); },
+            [&](PairCache& entry, Manifold& carried) -> const Manifold& {
+                return gdc::collideInto(polytope, pose, halfSpace, pairSettings, entry, carried);
+            });
     });
     if (manifold.empty()) return 0;
     return writeContacts(manifold, planeFirst, polytope.radius(), maxContacts, o1, o2, contact, skip);
@@ -370,16 +378,16 @@ int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int
     const Polytope& polytope1 = *known1;
     const Polytope& polytope2 = *known2;
     const bool swapped = comesFirst(pose2.position, o2, pose1.position, o1);
-    const Manifold manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) {
+    const Manifold& manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) -> const Manifold& {
         return queryThrough(
-            pairCache, o1, o2,
+            pairCache, o1, o2, cache.scratch,
             [&] {
                 return swapped ? gdc::collide(polytope2, pose2, polytope1, pose1, pairSettings)
                                : gdc::collide(polytope1, pose1, polytope2, pose2, pairSettings);
             },
-            [&](PairCache& entry) {
-                return swapped ? gdc::collide(polytope2, pose2, polytope1, pose1, pairSettings, entry)
-                               : gdc::collide(polytope1, pose1, polytope2, pose2, pairSettings, entry);
+            [&](PairCache& entry, Manifold& carried) -> const Manifold& {
+                return swapped ? gdc::collideInto(polytope2, pose2, polytope1, pose1, pairSettings, entry, carried)
+                               : gdc::collideInto(polytope1, pose1, polytope2, pose2, pairSettings, entry, carried);
             });
     });
     if (manifold.empty()) return 0;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <thread>
 #include <unordered_set>
 
 namespace gdc::ode::detail {
@@ -30,7 +31,9 @@ PairCacheTable& pairCacheTable() {
 }
 
 PairCacheTable::Lease::Lease(PairCacheTable& table) {
-    if (leaseHeld || !table.enabled() || !table.mutex_.try_lock()) return;
+    if (leaseHeld || !table.enabled() || table.held_.load(std::memory_order_relaxed) ||
+        table.held_.exchange(true, std::memory_order_acquire))
+        return;
     leaseHeld = true;
     table_ = &table;
     ++table.clock_;
@@ -40,7 +43,7 @@ PairCacheTable::Lease::Lease(PairCacheTable& table) {
 PairCacheTable::Lease::~Lease() {
     if (!table_) return;
     leaseHeld = false;
-    table_->mutex_.unlock();
+    table_->held_.store(false, std::memory_order_release);
 }
 
 PairCache* PairCacheTable::Lease::find(const void* geom1, const void* geom2) {
@@ -175,8 +178,24 @@ void PairCacheTable::noteFreed(const void* address) noexcept {
 
 void PairCacheTable::setEnabled(bool enabled) { enabled_.store(enabled, std::memory_order_relaxed); }
 
+bool PairCacheTable::acquireWaiting() {
+    if (leaseHeld) return false;
+    while (held_.load(std::memory_order_relaxed) || held_.exchange(true, std::memory_order_acquire))
+        std::this_thread::yield();  // a lease lasts one pair, or one spaceCollide call
+    return true;
+}
+
+// Releases what acquireWaiting took, at the end of the scope.
+struct PairCacheTable::Waited {
+    PairCacheTable& table;
+    bool taken;
+    ~Waited() {
+        if (taken) table.held_.store(false, std::memory_order_release);
+    }
+};
+
 void PairCacheTable::setCapacity(std::size_t entries) {
-    std::lock_guard<std::mutex> lock(mutex_);
+    const Waited lock{*this, acquireWaiting()};
     capacity_ = entries;
     if (liveEntries_ <= capacity_) return;
     std::vector<Entry*> byAge;
@@ -188,7 +207,7 @@ void PairCacheTable::setCapacity(std::size_t entries) {
 }
 
 void PairCacheTable::clear() {
-    std::lock_guard<std::mutex> lock(mutex_);
+    const Waited lock{*this, acquireWaiting()};
     index_.clear();
     chunks_.clear();
     freeEntries_.clear();
@@ -198,7 +217,7 @@ void PairCacheTable::clear() {
 }
 
 PairCacheTable::Stats PairCacheTable::stats() {
-    std::lock_guard<std::mutex> lock(mutex_);
+    const Waited lock{*this, acquireWaiting()};
     if (freedPending_.load(std::memory_order_acquire)) purgeFreed();
     Stats stats;
     stats.entries = liveEntries_;

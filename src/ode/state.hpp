@@ -11,6 +11,7 @@
 // value telling a thread when its copy may be stale. Everything else is guarded by locks.
 #pragma once
 
+#include <gdcontact/manifold.hpp>
 #include <gdcontact/polytope.hpp>
 #include <gdcontact/settings.hpp>
 
@@ -125,6 +126,10 @@ struct ThreadCache {
 
     std::uint64_t settingsGeneration = 0;  // 0: never copied
     Settings settings;
+
+    // Where collide() keeps an answer that is not in a pair cache (no cache, or a carried one)
+    // until it is written out: one per thread, so that a call constructs no 0.6 KB Manifold.
+    Manifold scratch;
 };
 
 inline ThreadCache& threadCache() {

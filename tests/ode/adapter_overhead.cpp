@@ -1,7 +1,10 @@
 // A driver for callgrind that measures what the ODE adapter adds to the core: the same stream of
 // geom pairs collided through gdc::ode::collide and, with the same polytopes, poses and A/B order,
 // through gdc::collide directly. Not a test (nothing is asserted); see tests/ode/CMakeLists.txt.
-//   ode_adapter_overhead CASE adapter|core [ROUNDS]   one measured loop (callgrind toggles it)
+//   ode_adapter_overhead CASE MODE [ROUNDS]           one measured loop (callgrind toggles it)
+// MODE: core (gdc::collide), adapter (gdc::ode::collide, pair cache off), cached (pair cache on,
+// nothing moves: every call after the first round a hit), cached-moving (pair cache on, every geom
+// nudged by 1e-9 between rounds, outside the measurement: every call a miss).
 //   ode_adapter_overhead dump [POSES]                 every contact of many pairs, as hex floats
 // Adapter overhead per call = Ir(adapter) − Ir(core) for the same CASE (tests/ode/adapter_overhead.sh
 // runs every case), e.g.
@@ -150,17 +153,34 @@ int measure(const std::string& name, const std::string& mode, int rounds) {
                                 : gdc::collide(*call.a, call.poseA, call.plane, settings))
                             .pointCount;
     };
-    const bool adapter = mode == "adapter";
+    const bool moving = mode == "cached-moving";
+    const bool adapter = mode == "adapter" || mode == "cached" || moving;
     if (!adapter && mode != "core") {
-        std::fprintf(stderr, "mode must be adapter or core\n");
+        std::fprintf(stderr, "mode must be core, adapter, cached or cached-moving\n");
         return 2;
     }
+    gdc::ode::setPairCacheEnabled(mode == "cached" || moving);
+    // Moves every placeable geom of the stream by ±1e-9 along x (alternating by round), and lets ODE
+    // bring its AABB up to date, as its broad phase would have before the collider runs.
+    auto nudge = [&](int round) {
+        for (const Pair& pair : stream.pairs)
+            for (dGeomID geom : {pair.o1, pair.o2}) {
+                if (dGeomGetClass(geom) == dPlaneClass) continue;
+                const dReal* p = dGeomGetPosition(geom);
+                dGeomSetPosition(geom, p[0] + (round % 2 ? 1e-9 : -1e-9), p[1], p[2]);
+                dReal aabb[6];
+                dGeomGetAABB(geom, aabb);
+            }
+    };
     // One round unmeasured: every per-thread cache warm, as in a running simulation.
     adapter ? adapterRound() : coreRound();
     contacts = 0;
-    CALLGRIND_TOGGLE_COLLECT;
-    for (int round = 0; round < rounds; ++round) adapter ? adapterRound() : coreRound();
-    CALLGRIND_TOGGLE_COLLECT;
+    for (int round = 0; round < rounds; ++round) {
+        if (moving) nudge(round);
+        CALLGRIND_TOGGLE_COLLECT;
+        adapter ? adapterRound() : coreRound();
+        CALLGRIND_TOGGLE_COLLECT;
+    }
     count = static_cast<long long>(rounds) * static_cast<long long>(stream.pairs.size());
     std::printf("%s %s calls %lld contacts/call %.3f\n", name.c_str(), mode.c_str(), count,
                 static_cast<double>(contacts) / static_cast<double>(count));

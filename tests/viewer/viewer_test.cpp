@@ -5,6 +5,7 @@
 // ODE's, and the two views' pixels say so; drag, removal and push reach both worlds; the geom
 // toggle rebuilds with dBox or dConvex; the verdict is the scene's own check; the box drop's
 // camera keeps the box in view.
+// ... and records every K-th frame as PNG.
 #include "image.hpp"
 #include "ode_session.hpp"
 #include "viewer.hpp"
@@ -19,6 +20,7 @@
 #include <cstdlib>
 #include <memory>
 #include <string>
+#include <vector>
 
 using namespace gdc;
 using namespace gdc::viewer;
@@ -462,4 +464,32 @@ TEST_CASE("contacts behind the resting box show only when drawn through the bodi
     INFO(hidden << " marker pixels depth-tested, " << through << " drawn through");
     CHECK(hidden > 0);            // the corners on the camera's side of the box are seen
     CHECK(through > hidden + 8);  // the far corner's 6-pixel point at least half shows in addition
+}
+
+TEST_CASE("the headless command records every K-th frame and the last as PNG") {
+    const std::string problem = test::ensureXServer();
+    if (!problem.empty()) return test::reportSkipped(problem);
+    const std::string directory = std::string(GDCONTACT_VIEWER_TEST_OUTPUT) + "/viewer_recording";
+    const std::string viewer = std::string("\"") + GDCONTACT_VIEWER_EXECUTABLE + "\"";
+    std::system(("rm -rf \"" + directory + "\"").c_str());
+    // 25 frames, every 10th: frames 0, 10, 20 and the last (24), as frame_0000.png ... frame_0003.png.
+    const std::string command = viewer + " --scene box_drop --frames 25 --record-every 10 --record-dir \"" + directory +
+                                "\" --size 480x270 --hidden --no-panel > /dev/null";
+    INFO(command);
+    REQUIRE(std::system(command.c_str()) == 0);
+    std::vector<Image> frames;
+    for (int i = 0; i < 4; ++i) {
+        char name[32];
+        std::snprintf(name, sizeof name, "/frame_%04d.png", i);
+        frames.push_back(readPng(directory + name));
+        CHECK(frames.back().width == 480);
+        CHECK(frames.back().height == 270);
+        requireShowsBodies(frames.back());
+    }
+    CHECK_THROWS(readPng(directory + "/frame_0004.png"));
+    // The box falls between the first and the last recorded frame: the pictures differ.
+    CHECK(frames.front().rgb != frames.back().rgb);
+    // Recording needs a folder and a frame count.
+    CHECK(std::system((viewer + " --scene box_drop --frames 5 --record-every 2 --hidden 2> /dev/null").c_str()) != 0);
+    CHECK(std::system((viewer + " --scene box_drop --record-every 2 --record-dir x --hidden 2> /dev/null").c_str()) != 0);
 }
