@@ -51,6 +51,11 @@ PairCache* PairCacheTable::Lease::find(const void* geom1, const void* geom2) {
     const void* first = ordered ? geom1 : geom2;
     const void* second = ordered ? geom2 : geom1;
     Entry* entry = table_->lookUp(first, second);
+    // Handed out already under this lease: the broad phase listed the pair twice (ODE's near-callback
+    // pattern for nested spaces collides a sub-space once per geom it overlaps), and spaceCollide's
+    // threads may collide the two listings at once — so the second goes without the cache (the
+    // exact cache's answer is the query's anyway).
+    if (entry && entry->lastUse == table_->clock_) return nullptr;
     if (!entry) entry = table_->insert(first, second);
     if (!entry) return nullptr;
     entry->lastUse = table_->clock_;

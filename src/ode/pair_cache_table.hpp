@@ -48,7 +48,8 @@ public:
         Lease& operator=(const Lease&) = delete;
         explicit operator bool() const { return table_ != nullptr; }
         /// The cache of the pair {geom1, geom2} (either order), made empty if new; nullptr when the
-        /// table is full. Valid until the lease ends.
+        /// table is full, or when this lease has handed it out already (a pair listed twice must not
+        /// have one cache used by two threads at once). Valid until the lease ends.
         PairCache* find(const void* geom1, const void* geom2);
         /// Counts how the entry handed out by find() answered its last query.
         void count(const PairCache& cache);
