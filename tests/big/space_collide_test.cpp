@@ -442,8 +442,9 @@ TEST_CASE("spaceCollide's phase profile counts the broad phase's pairs and its p
         CHECK(p.narrowOnCallerSeconds <= p.narrowSeconds);
         CHECK(p.broadPhaseSeconds > 0.0);
         CHECK(p.handlerSeconds >= 0.0);
+        // The phases are read off the same clock as the call; their sum may differ from it by rounding.
         const double phases = p.broadPhaseSeconds + p.drainSeconds + p.handlerSeconds;
-        CHECK(phases <= p.totalSeconds);
+        CHECK(phases <= p.totalSeconds + 1e-9);
         CHECK(phases >= 0.9 * p.totalSeconds);
         if (threads == 1) CHECK(p.narrowSeconds <= p.broadPhaseSeconds);  // serial: inside the broad phase
     }
