@@ -284,17 +284,23 @@ struct ProfileSeries {
 };
 
 std::uint64_t hashContacts(const World& w) {
-    std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the contacts' bytes and their pairs
-    auto mix = [&](const void* data, std::size_t size) {
-        const unsigned char* bytes = static_cast<const unsigned char*>(data);
-        for (std::size_t i = 0; i < size; ++i) h = (h ^ bytes[i]) * 1099511628211ull;
+    // A 64-bit mix over each contact's meaningful words (pos and normal without their padding
+    // element, which ODE leaves unset; depth; the pair): a word at a time, so that checking every
+    // step costs little beside the contenders.
+    std::uint64_t h = 1469598103934665603ull;
+    auto mix = [&](std::uint64_t word) { h = (h ^ word) * 0x100000001B3ull + (h >> 29); };
+    auto bits = [](double value) {
+        std::uint64_t word;
+        std::memcpy(&word, &value, sizeof word);
+        return word;
     };
     for (std::size_t i = 0; i < w.contacts.size(); ++i) {
         const dContactGeom& c = w.contacts[i];
-        mix(c.pos, sizeof c.pos);
-        mix(c.normal, sizeof c.normal);
-        mix(&c.depth, sizeof c.depth);
-        mix(w.pairs[i].data(), sizeof(dGeomID) * 2);
+        for (int k = 0; k < 3; ++k) mix(bits(c.pos[k]));
+        for (int k = 0; k < 3; ++k) mix(bits(c.normal[k]));
+        mix(bits(c.depth));
+        mix(reinterpret_cast<std::uintptr_t>(w.pairs[i][0]));
+        mix(reinterpret_cast<std::uintptr_t>(w.pairs[i][1]));
     }
     return h;
 }
