@@ -275,7 +275,9 @@ void addPair(Call& call, dGeomID o1, dGeomID o2) {
         slot.o1 = o1;
         slot.o2 = o2;
         slot.count = 0;
-        slot.cache = call.pairCache ? call.pairCache.find(o1, o2) : nullptr;
+        slot.cache = call.pairCache && detail::pairCacheWorthIt(o1, o2, detail::installedSettings(call.cache))
+                         ? call.pairCache.find(o1, o2)
+                         : nullptr;
         scratch.gdcontactPairs = index + 1;
         call.job.available.store(index + 1, std::memory_order_release);
         return;
@@ -284,7 +286,9 @@ void addPair(Call& call, dGeomID o1, dGeomID o2) {
     // now on the calling thread, the contacts packed one pair after the other.
     const int room = ours ? call.slotSize : call.maxContacts;
     dContactGeom* out = scratch.packed.reserve(static_cast<std::size_t>(room));
-    PairCache* cache = ours && call.pairCache ? call.pairCache.find(o1, o2) : nullptr;
+    PairCache* cache = ours && call.pairCache && detail::pairCacheWorthIt(o1, o2, detail::installedSettings(call.cache))
+                           ? call.pairCache.find(o1, o2)
+                           : nullptr;
     const int count = ours ? detail::collideWithPairCache(o1, o2, room, out, sizeof(dContactGeom), cache)  // never throws
                            : dCollide(o1, o2, room, out, sizeof(dContactGeom));
     if (cache) call.pairCache.count(*cache);
