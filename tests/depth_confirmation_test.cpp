@@ -5,6 +5,7 @@
 #include "collide_general.hpp"
 #include "growth_distance.hpp"
 #include "contact_checks.hpp"
+#include "sanitizer_scale.hpp"
 
 #include <cstdio>
 
@@ -13,19 +14,7 @@ using namespace gdc::testing;
 
 namespace {
 
-// The proof is the Release run (scripts/test); the sanitizer runs (scripts/sanitize, 10-50x
-// slower) check memory and undefined behaviour, for which a tenth of the poses is plenty.
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr int kPoses = 10000;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
-constexpr int kPoses = 10000;
-#else
-constexpr int kPoses = 100000;
-#endif
-#else
-constexpr int kPoses = 100000;
-#endif
+constexpr int kPoses = scaledForSanitizers(100000);
 
 std::vector<Vec3> randomCloud(std::mt19937& random, int count, const Vec3& scale) {
     std::normal_distribution<double> gaussian;

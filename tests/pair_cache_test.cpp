@@ -5,6 +5,7 @@
 // query, and only while the pair has moved less than that.
 #include "growth_distance.hpp"
 #include "geometry_oracles.hpp"
+#include "sanitizer_scale.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -17,17 +18,7 @@ using namespace gdc::testing;
 
 namespace {
 
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr int kSteps = 10000;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
-constexpr int kSteps = 10000;
-#else
-constexpr int kSteps = 100000;
-#endif
-#else
-constexpr int kSteps = 100000;
-#endif
+constexpr int kSteps = scaledForSanitizers(100000);
 
 std::vector<Vec3> randomCloud(std::mt19937& random, int count, double scale) {
     std::normal_distribution<double> gaussian;

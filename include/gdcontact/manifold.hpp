@@ -33,6 +33,8 @@ struct Manifold {
     /// (or B by +depth·normal) separates the pair at that point. Undefined when pointCount == 0.
     Vec3 normal = Vec3::UnitZ();
     int pointCount = 0;
+    /// points[0 .. pointCount); the others are unspecified (an answer repeated from a PairCache
+    /// leaves there what an earlier answer had).
     std::array<ContactPoint, kMaxManifoldPoints> points{};
     /// The Gauss-map features the points came from (for diagnostics and tests).
     Feature featureA, featureB;

@@ -44,7 +44,8 @@ extern "C" {
  * (settings.hpp says why each bound is there): rayCastTolerance (relative, 1e-15..1e-3),
  * maxRayCastIterations (1..10000), angularTolerance (radians, 0..0.5), margin (length unit, 0..1),
  * spanContactRegion (0 or not 0), maxContacts (1..16), bruteForceSupportLimit (0..65536),
- * coplanarTolerance (radians, 0..0.1), normalMethod (GDC_NORMAL_*).
+ * coplanarTolerance (radians, 0..0.1), normalMethod (GDC_NORMAL_*), manifoldReuseDistance (length
+ * unit, 0..1; 0: the pair cache is exact).
  * Always start from gdcDefaultSettings(): fields are only ever added at the end. */
 typedef struct gdcSettings {
     double rayCastTolerance;
@@ -56,6 +57,7 @@ typedef struct gdcSettings {
     int bruteForceSupportLimit;
     double coplanarTolerance;
     int normalMethod;
+    double manifoldReuseDistance;
 } gdcSettings;
 
 /* Fills *settings with gdcontact's defaults (those of gdc::Settings). Does nothing for NULL. */
@@ -118,6 +120,11 @@ GDCONTACT_C_API int gdcSpaceCollide(dSpaceID space, int maxContactsPerPair, void
 /* gdc::ode::setThreadCount: threads gdcSpaceCollide uses, 0 (default) one per hardware thread,
  * 1 serial on the calling thread, at most 256. Returns GDC_OK or GDC_ERROR_INVALID_ARGUMENT. */
 GDCONTACT_C_API int gdcSetThreadCount(int threads) GDCONTACT_C_NOEXCEPT;
+
+/* gdc::ode::setPairCacheEnabled / clearPairCache: the adapter's pair cache (on by default; exact
+ * unless gdcSettings::manifoldReuseDistance is set; docs/ode.md). */
+GDCONTACT_C_API void gdcSetPairCacheEnabled(int enabled) GDCONTACT_C_NOEXCEPT;
+GDCONTACT_C_API void gdcClearPairCache(void) GDCONTACT_C_NOEXCEPT;
 
 /* This thread's last error message, "" if none. gdcInstall, gdcCreateConvex*, gdcSpaceCollide and
  * gdcSetThreadCount set it when they fail and clear it when they succeed. The string stays valid

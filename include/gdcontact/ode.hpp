@@ -127,8 +127,10 @@ struct PairCacheStats {
 
 /// The adapter keeps one gdc::PairCache per geom pair it is asked about (collide() and
 /// spaceCollide), on by default. With the default settings it is exact: a pair none of whose
-/// inputs changed (poses, shapes, settings — bodies that ODE auto-disabled, or static geoms) gets
-/// its last answer again, bit for bit, without a query; any other pair a full query. With
+/// inputs changed (poses, shapes, settings) gets its last answer again, bit for bit, without a
+/// query. Only pairs whose geoms are static or belong to disabled bodies (ODE's auto-disable) can
+/// stay unchanged, so only they are cached; a pair with an enabled body costs two ODE getters more
+/// than without the cache. With
 /// Settings::manifoldReuseDistance > 0 a pair that moved less than that gets its contacts carried
 /// along instead (an approximation: see settings.hpp). Entries die with their geoms (ODE's free
 /// hook), age out when their pair is no longer asked about, and never exceed the capacity. No

@@ -44,15 +44,7 @@ FrameInput rendererInput(const FrameInput& in, const DebugDraw& debug, std::vect
 void drawDebugOverlay(const FrameInput& in, const DebugDraw& debug) {
     if ((!debug.wireframe && !debug.bounds) || in.shapes == nullptr || in.camera == nullptr) return;
     // Into the frame's own viewport (side by side: one of two), clipped to it as the renderer is.
-    glViewport(in.x, in.y, in.width, in.height);
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(in.x, in.y, in.width, in.height);
-    glMatrixMode(GL_PROJECTION);
-    const Mat4 projection = in.camera->projection(double(in.width) / std::max(in.height, 1));
-    glLoadMatrixd(projection.data());
-    glMatrixMode(GL_MODELVIEW);
-    const Mat4 view = in.camera->view();
-    glLoadMatrixd(view.data());
+    useFrameCamera(in);
     glDisable(GL_LIGHTING);
     glDisable(GL_TEXTURE_2D);
     glEnable(GL_DEPTH_TEST);  // the ground (and, without wireframe, the bodies) hides what is behind

@@ -95,6 +95,18 @@ void drawContacts(const FrameInput& in) {
 
 }  // namespace
 
+void useFrameCamera(const FrameInput& in) {
+    glViewport(in.x, in.y, in.width, in.height);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(in.x, in.y, in.width, in.height);
+    glMatrixMode(GL_PROJECTION);
+    const Mat4 projection = in.camera->projection(double(in.width) / std::max(in.height, 1));
+    glLoadMatrixd(projection.data());
+    glMatrixMode(GL_MODELVIEW);
+    const Mat4 view = in.camera->view();
+    glLoadMatrixd(view.data());
+}
+
 Vec3 sunDirection() {
     // 50° up, from the default camera's right (it looks along +x+y·2.2 from the −y side): the
     // shadows fall to the left, beside the bodies, where the camera sees them, not behind them.
@@ -205,14 +217,9 @@ void Renderer::render(const FrameInput& in) {
     glClearDepth(1.0);
     glClearStencil(0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
-    drawBackground();
+    drawBackground();  // in identity matrices
 
-    glMatrixMode(GL_PROJECTION);
-    const Mat4 projection = in.camera->projection(double(in.width) / std::max(in.height, 1));
-    glLoadMatrixd(projection.data());
-    glMatrixMode(GL_MODELVIEW);
-    const Mat4 view = in.camera->view();
-    glLoadMatrixd(view.data());
+    useFrameCamera(in);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
     glShadeModel(GL_FLAT);

@@ -45,6 +45,10 @@ struct FrameInput {
 /// Where the sun shines from (unit vector towards it, world frame, z up): fixed in the world so
 /// shades and shadows stay put while the camera orbits.
 Vec3 sunDirection();
+
+/// Points OpenGL at the frame's viewport (clipped to it with the scissor test: side by side, the
+/// other view stays) and loads its camera's projection and view matrices.
+void useFrameCamera(const FrameInput& in);
 /// Brightness factor of a face with world normal `normal` (z up): hemisphere ambient (sky above,
 /// ground below) plus the sun's Lambert term. Between 0.25 (facing down) and 1.0 (facing the sun).
 double faceBrightness(const Vec3& normal);

@@ -70,6 +70,7 @@ gdc::Settings toSettings(const gdcSettings& in) {
     out.bruteForceSupportLimit = in.bruteForceSupportLimit;
     out.coplanarTolerance = in.coplanarTolerance;
     out.normalMethod = static_cast<gdc::NormalMethod>(in.normalMethod);
+    out.manifoldReuseDistance = in.manifoldReuseDistance;
     return out;  // the ranges are checked by gdc::validate (in gdc::ode::install), which names the field
 }
 
@@ -89,6 +90,7 @@ void gdcDefaultSettings(gdcSettings* settings) noexcept {
     settings->bruteForceSupportLimit = defaults.bruteForceSupportLimit;
     settings->coplanarTolerance = defaults.coplanarTolerance;
     settings->normalMethod = static_cast<int>(defaults.normalMethod);
+    settings->manifoldReuseDistance = defaults.manifoldReuseDistance;
 }
 
 int gdcInstall(const gdcSettings* settings) noexcept {
@@ -159,6 +161,15 @@ int gdcSpaceCollide(dSpaceID space, int maxContactsPerPair, void* data, gdcConta
 
 int gdcSetThreadCount(int threads) noexcept {
     return guarded([&] { gdc::ode::setThreadCount(threads); });
+}
+
+void gdcSetPairCacheEnabled(int enabled) noexcept { gdc::ode::setPairCacheEnabled(enabled != 0); }
+
+void gdcClearPairCache(void) noexcept {
+    try {
+        gdc::ode::clearPairCache();
+    } catch (...) {  // an allocation inside the table's clean-up: nothing to report, nothing left half done
+    }
 }
 
 const char* gdcLastError(void) noexcept { return lastError; }

@@ -281,7 +281,6 @@ struct Call {
     // This call's hold on the pair cache: each gdcontact pair's entry is found here, on the calling
     // thread, and handed to whichever thread collides the pair (one thread per pair: never shared).
     detail::PairCacheTable::Lease& pairCache;
-    bool cacheMovingPairs;  // Settings::manifoldReuseDistance > 0: moving pairs are carried along
     std::int64_t* serialNarrowNanos = nullptr;  // profiling, serial: gdcontact's collide calls
     std::size_t serialGdcontactPairs = 0;       // profiling, serial: how many
 };
@@ -290,19 +289,6 @@ struct Call {
 bool isGdcontactGeom(dGeomID geom, int geomClass, detail::ThreadCache& cache) {
     if (geomClass == dBoxClass || geomClass == dPlaneClass) return true;
     return geomClass == dConvexClass && detail::borrowedConvex(cache, geom) != nullptr;
-}
-
-// Whether the pair's cache entry can pay for itself. The exact cache answers only a pair none of
-// whose geoms moved; a geom on an enabled body moves every step (ODE integrates it), so for such a
-// pair the lookup and the ~1 KB the entry takes in are pure cost: on an awake 1000-box pile they made
-// the call 50 to 80 % slower with no answer repeated. Static geoms and auto-disabled bodies keep
-// their poses, and that is where the cache answers (a body's first step asleep is the one answer
-// lost: its entry is filled then, and answers from the next). With manifoldReuseDistance > 0 the
-// cache carries moving pairs too, so every pair keeps its entry.
-bool pairCacheMayAnswer(const Call& call, dGeomID o1, dGeomID o2) {
-    if (call.cacheMovingPairs) return true;
-    dBodyID b1 = dGeomGetBody(o1), b2 = dGeomGetBody(o2);
-    return !(b1 && dBodyIsEnabled(b1)) && !(b2 && dBodyIsEnabled(b2));
 }
 
 void addPair(Call& call, dGeomID o1, dGeomID o2) {
@@ -323,7 +309,9 @@ void addPair(Call& call, dGeomID o1, dGeomID o2) {
         slot.o1 = o1;
         slot.o2 = o2;
         slot.count.store(-1, std::memory_order_relaxed);  // published by Job::ready (release)
-        slot.cache = call.pairCache && pairCacheMayAnswer(call, o1, o2) ? call.pairCache.find(o1, o2) : nullptr;
+        slot.cache = call.pairCache && detail::pairCacheWorthIt(o1, o2, detail::installedSettings(call.cache))
+                         ? call.pairCache.find(o1, o2)
+                         : nullptr;
         scratch.gdcontactPairs = index + 1;
         call.job.ready(index + 1);
         return;
@@ -332,8 +320,9 @@ void addPair(Call& call, dGeomID o1, dGeomID o2) {
     // now on the calling thread, the contacts packed one pair after the other.
     const int room = ours ? call.slotSize : call.maxContacts;
     dContactGeom* out = scratch.packed.reserve(static_cast<std::size_t>(room));
-    PairCache* cache =
-        ours && call.pairCache && pairCacheMayAnswer(call, o1, o2) ? call.pairCache.find(o1, o2) : nullptr;
+    PairCache* cache = ours && call.pairCache && detail::pairCacheWorthIt(o1, o2, detail::installedSettings(call.cache))
+                           ? call.pairCache.find(o1, o2)
+                           : nullptr;
     int count;
     if (ours && call.serialNarrowNanos) {
         const auto start = ProfileClock::now();
@@ -482,9 +471,7 @@ void spaceCollide(dSpaceID space, int maxContactsPerPair, void* data, ContactHan
     } poolHeld{holdingPool, parallel};
     if (parallel) holdingPool = true;
     detail::PairCacheTable::Lease pairCache(detail::pairCacheTable());
-    detail::ThreadCache& threadCache = detail::threadCache();
-    Call call{scratch, maxContactsPerPair, slotSize, threadCache, job, !parallel, nullptr, pairCache,
-              detail::installedSettings(threadCache).manifoldReuseDistance > 0};
+    Call call{scratch, maxContactsPerPair, slotSize, detail::threadCache(), job, !parallel, nullptr, pairCache};
     std::int64_t serialNarrowNanos = 0;
     if (profile && !parallel) call.serialNarrowNanos = &serialNarrowNanos;
 

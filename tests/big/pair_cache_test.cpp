@@ -240,7 +240,7 @@ TEST_CASE("pair cache: entries die with their geoms, age out when pairs part, an
     dSpaceDestroy(space);
 }
 
-TEST_CASE("pair cache: switched off, every call is a full query; manifoldReuseDistance carries resting pairs", "[big]") {
+TEST_CASE("pair cache: switched off, every call is a full query, and manifoldReuseDistance carries resting pairs", "[big]") {
     SECTION("off") {
         Session session;
         gdc::ode::setPairCacheEnabled(false);

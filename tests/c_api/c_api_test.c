@@ -58,6 +58,8 @@ static void checkSettings(void) {
     bad = defaults; bad.angularTolerance = NAN;         checkRejected(bad, "angularTolerance");
     bad = defaults; bad.margin = -0.1;                  checkRejected(bad, "margin");
     bad = defaults; bad.maxContacts = 17;               checkRejected(bad, "maxContacts");
+    bad = defaults; bad.manifoldReuseDistance = -1e-3;  checkRejected(bad, "manifoldReuseDistance");
+    CHECK(defaults.manifoldReuseDistance == 0.0);
     bad = defaults; bad.bruteForceSupportLimit = -1;    checkRejected(bad, "bruteForceSupportLimit");
     bad = defaults; bad.coplanarTolerance = -1.0;       checkRejected(bad, "coplanarTolerance");
     bad = defaults; bad.normalMethod = 2;               checkRejected(bad, "normalMethod");
@@ -138,14 +140,19 @@ static void checkSpaceCollide(void) {
     dGeomID lower = gdcCreateConvexFromPoints(space, cubePoints, 8);
     dGeomID upper = dCreateBox(space, 1, 1, 1);
     struct SpaceCollideRecord record = {0, 0, 0};
-    int threads;
+    int threads, cache;
     dGeomSetPosition(lower, 0, 0, 0);
     dGeomSetPosition(upper, 0, 0, 0.99);
-    for (threads = 1; threads <= 2; ++threads) {
-        CHECK(gdcSetThreadCount(threads) == GDC_OK);
-        record.pairs = record.contacts = record.validNormals = 0;
-        CHECK(gdcSpaceCollide(space, 8, &record, recordPair) == GDC_OK);
-        CHECK(record.pairs == 1 && record.contacts == 4 && record.validNormals == 4);
+    /* Static geoms: with the pair cache on, the second call onwards is answered from it. */
+    for (cache = 0; cache <= 1; ++cache) {
+        gdcSetPairCacheEnabled(cache);
+        gdcClearPairCache();
+        for (threads = 1; threads <= 2; ++threads) {
+            CHECK(gdcSetThreadCount(threads) == GDC_OK);
+            record.pairs = record.contacts = record.validNormals = 0;
+            CHECK(gdcSpaceCollide(space, 8, &record, recordPair) == GDC_OK);
+            CHECK(record.pairs == 1 && record.contacts == 4 && record.validNormals == 4);
+        }
     }
     CHECK(gdcSetThreadCount(-1) == GDC_ERROR_INVALID_ARGUMENT);
     CHECK(strlen(gdcLastError()) > 0);

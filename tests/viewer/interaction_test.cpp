@@ -5,6 +5,7 @@
 #include "image.hpp"
 #include "ode_session.hpp"
 #include "viewer.hpp"
+#include "viewer_test_support.hpp"
 #include "x_server.hpp"
 
 #include <catch2/catch.hpp>
@@ -19,27 +20,14 @@
 
 using namespace gdc;
 using namespace gdc::viewer;
+using gdc::viewer::test::positionOf;
+using gdc::viewer::test::testOptions;
 
 namespace {
 
 using gdc::testing::OdeSession;
 
 const std::string kMaul = std::string(GDCONTACT_SOURCE_DIR) + "/samples/viewer/assets/maul.obj";
-
-ViewerOptions testOptions(const std::string& scene) {
-    ViewerOptions options;
-    options.scene = scene;
-    options.width = 480;
-    options.height = 270;
-    options.visible = false;
-    options.panel = false;
-    return options;
-}
-
-Vec3 positionOf(dBodyID body) {
-    const dReal* p = dBodyGetPosition(body);
-    return Vec3(p[0], p[1], p[2]);
-}
 
 Vec3 velocityOf(dBodyID body) {
     const dReal* v = dBodyGetLinearVel(body);

@@ -9,6 +9,7 @@
 #include "image.hpp"
 #include "ode_session.hpp"
 #include "viewer.hpp"
+#include "viewer_test_support.hpp"
 #include "x_server.hpp"
 
 #include <catch2/catch.hpp>
@@ -24,25 +25,12 @@
 
 using namespace gdc;
 using namespace gdc::viewer;
+using gdc::viewer::test::positionOf;
+using gdc::viewer::test::testOptions;
 
 namespace {
 
 using gdc::testing::OdeSession;
-
-ViewerOptions testOptions(const std::string& scene) {
-    ViewerOptions options;
-    options.scene = scene;
-    options.width = 480;
-    options.height = 270;
-    options.visible = false;
-    options.panel = false;
-    return options;
-}
-
-Vec3 positionOf(dBodyID body) {
-    const dReal* p = dBodyGetPosition(body);
-    return Vec3(p[0], p[1], p[2]);
-}
 
 // A frame shows something: not one flat colour, and a share of pixels in the bodies' colours.
 void requireShowsBodies(const Image& image) {
