@@ -52,9 +52,11 @@ int adapterCollide(dGeomID a, dGeomID b, int maxContacts, dContactGeom* contacts
 
 /// The geoms of one ODE contender: one per pose, posed once outside the timed loop; except for
 /// hulls above kReposeAbove vertices, where creating a dConvex per pose costs seconds of set-up
-/// (ODE's dxConvex::FillEdges) and one geom is re-posed per call instead, which costs under 0.1 %
-/// of such a call. A single geom (a plane) serves every pose. Destroyed with this object (by the
-/// OdeConvex that owns it, or here).
+/// (ODE's dxConvex::FillEdges) and one geom is re-posed per call instead, and its AABB brought up
+/// to date as ODE's space would before any collider runs (a loop over the hull's vertices, charged
+/// to every ODE contender alike: gdcontact's adapter reads the AABB to notice dGeomSetConvex, and
+/// without the update it paid ODE's recomputation alone). A single geom (a plane) serves every
+/// pose. Destroyed with this object (by the OdeConvex that owns it, or here).
 constexpr int kReposeAbove = 256;
 
 struct PosedGeoms {
@@ -64,6 +66,8 @@ struct PosedGeoms {
     dGeomID at(int poseIndex) const {
         if (poses.empty()) return geoms[poseIndex % geoms.size()];
         setGeomPose(geoms[0], poses[poseIndex % poses.size()]);
+        dReal aabb[6];
+        dGeomGetAABB(geoms[0], aabb);
         return geoms[0];
     }
     ~PosedGeoms() {
