@@ -28,8 +28,8 @@ struct SpaceCollideProfile {
 };
 
 /// Turns the recording on or off for every later spaceCollide call (any thread).
-GDCONTACT_API void setSpaceCollideProfiling(bool enabled);
+void setSpaceCollideProfiling(bool enabled);
 /// The calling thread's last spaceCollide call while recording was on.
-GDCONTACT_API SpaceCollideProfile lastSpaceCollideProfile();
+SpaceCollideProfile lastSpaceCollideProfile();
 
 }  // namespace gdc::ode::detail
