@@ -410,7 +410,8 @@ int collideGuarded(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int
     }
     try {
         if (given) return collideChecked(o1, o2, flags, contact, skip, *settings, cache, CacheSource{given, nullptr});
-        if (!detail::pairCacheWorthIt(o1, o2, *settings))
+        // The table's switch first: with the cache off, not even the ODE getters of the rule.
+        if (!detail::pairCacheTable().enabled() || !detail::pairCacheWorthIt(o1, o2, *settings))
             return collideChecked(o1, o2, flags, contact, skip, *settings, cache, CacheSource{});
         detail::PairCacheTable::Lease lease(detail::pairCacheTable());
         return collideChecked(o1, o2, flags, contact, skip, *settings, cache, CacheSource{nullptr, &lease});

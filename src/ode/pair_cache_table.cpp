@@ -105,12 +105,17 @@ PairCacheTable::Entry* PairCacheTable::insert(const void* first, const void* sec
     entry->second = second;
     entry->cache.clear();
     ++liveEntries_;
-    for (std::size_t i = home(first, second);; i = (i + 1) & (index_.size() - 1))
-        if (!index_[i].entry) {
-            index_[i] = Slot{first, second, entry};
-            break;
-        }
+    place(Slot{first, second, entry});
     return entry;
+}
+
+// Linear probing: into the first empty slot from the pair's home (the index is at most half full).
+void PairCacheTable::place(const Slot& slot) {
+    for (std::size_t i = home(slot.first, slot.second);; i = (i + 1) & (index_.size() - 1))
+        if (!index_[i].entry) {
+            index_[i] = slot;
+            return;
+        }
 }
 
 void PairCacheTable::rebuildIndex(std::size_t slots) {
@@ -118,14 +123,8 @@ void PairCacheTable::rebuildIndex(std::size_t slots) {
     while (size < slots) size *= 2;
     std::vector<Slot> old = std::move(index_);
     index_.assign(size, Slot{});
-    for (const Slot& slot : old) {
-        if (!slot.entry) continue;
-        for (std::size_t i = home(slot.first, slot.second);; i = (i + 1) & (size - 1))
-            if (!index_[i].entry) {
-                index_[i] = slot;
-                break;
-            }
-    }
+    for (const Slot& slot : old)
+        if (slot.entry) place(slot);
 }
 
 void PairCacheTable::erase(const std::vector<Entry*>& doomed) {

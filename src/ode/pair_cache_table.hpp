@@ -84,6 +84,7 @@ private:
 
     Entry* lookUp(const void* first, const void* second);
     Entry* insert(const void* first, const void* second);
+    void place(const Slot& slot);
     void rebuildIndex(std::size_t slots);
     void purgeFreed();
     void age();
