@@ -4,9 +4,7 @@
 // run it.
 #include <gdcontact/collide.hpp>
 
-#include <cmath>
 #include <cstring>
-#include <type_traits>
 
 namespace gdc {
 namespace {
