@@ -35,21 +35,25 @@ if(BUILD_SHARED_LIBS)
 else()
   set(GDCONTACT_PC_LIBS_PRIVATE "-lgdcontact_core -lqhull_r -lstdc++ -lm")
 endif()
-# The prefix is the one the files are installed under (`cmake --install --prefix`, CPack's
-# staging), so the file is completed at install time: first everything else, then the prefix.
-set(GDCONTACT_PC_PREFIX "@GDCONTACT_PC_PREFIX@")
-foreach(_dir LIBDIR INCLUDEDIR)
-  if(IS_ABSOLUTE "${CMAKE_INSTALL_${_dir}}")
-    set(GDCONTACT_PC_${_dir} "${CMAKE_INSTALL_${_dir}}")
-  else()
-    set(GDCONTACT_PC_${_dir} "\${prefix}/${CMAKE_INSTALL_${_dir}}")
-  endif()
-endforeach()
-configure_file(${PROJECT_SOURCE_DIR}/cmake/gdcontact.pc.in ${PROJECT_BINARY_DIR}/gdcontact.pc.stage @ONLY)
-install(CODE "
-  set(GDCONTACT_PC_PREFIX \"\${CMAKE_INSTALL_PREFIX}\")
-  configure_file(\"${PROJECT_BINARY_DIR}/gdcontact.pc.stage\" \"${PROJECT_BINARY_DIR}/gdcontact.pc\" @ONLY)
-")
+# Relocatable: the prefix is derived from where the file is found (pkg-config's ${pcfiledir}), so a
+# tree installed with one prefix and moved elsewhere, or the Debian package's files under /usr,
+# describe themselves. The number of `..` is the depth of <libdir>/pkgconfig below the prefix:
+# 2 for lib/pkgconfig, 3 for Debian's multiarch lib/x86_64-linux-gnu/pkgconfig. An absolute
+# CMAKE_INSTALL_LIBDIR or INCLUDEDIR is written as it is (such an installation cannot move).
+if(IS_ABSOLUTE "${CMAKE_INSTALL_LIBDIR}")
+  set(GDCONTACT_PC_PREFIX "${CMAKE_INSTALL_PREFIX}")
+  set(GDCONTACT_PC_LIBDIR "${CMAKE_INSTALL_LIBDIR}")
+else()
+  file(RELATIVE_PATH _gdcontact_pc_up "/prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/prefix")
+  set(GDCONTACT_PC_PREFIX "\${pcfiledir}/${_gdcontact_pc_up}")
+  set(GDCONTACT_PC_LIBDIR "\${prefix}/${CMAKE_INSTALL_LIBDIR}")
+endif()
+if(IS_ABSOLUTE "${CMAKE_INSTALL_INCLUDEDIR}")
+  set(GDCONTACT_PC_INCLUDEDIR "${CMAKE_INSTALL_INCLUDEDIR}")
+else()
+  set(GDCONTACT_PC_INCLUDEDIR "\${prefix}/${CMAKE_INSTALL_INCLUDEDIR}")
+endif()
+configure_file(${PROJECT_SOURCE_DIR}/cmake/gdcontact.pc.in ${PROJECT_BINARY_DIR}/gdcontact.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/gdcontact.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
 
 install(FILES ${PROJECT_SOURCE_DIR}/LICENSE ${PROJECT_SOURCE_DIR}/CHANGELOG.md
