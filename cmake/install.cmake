@@ -45,6 +45,7 @@ if(IS_ABSOLUTE "${CMAKE_INSTALL_LIBDIR}")
   set(GDCONTACT_PC_LIBDIR "${CMAKE_INSTALL_LIBDIR}")
 else()
   file(RELATIVE_PATH _gdcontact_pc_up "/prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/prefix")
+  string(REGEX REPLACE "/$" "" _gdcontact_pc_up "${_gdcontact_pc_up}")  # "../../" on some CMakes
   set(GDCONTACT_PC_PREFIX "\${pcfiledir}/${_gdcontact_pc_up}")
   set(GDCONTACT_PC_LIBDIR "\${prefix}/${CMAKE_INSTALL_LIBDIR}")
 endif()
