@@ -231,6 +231,9 @@ inline PairPose randomPairPose(Random& random, const Polytope& a, const Polytope
         default:
             break;
     }
+    // Products of rotations (and FromTwoVectors for nearly opposite vectors) drift from orthonormal
+    // by up to 1e-11: back through a unit quaternion, so the pose is a rotation to rounding.
+    rotationB = Eigen::Quaterniond(rotationB).normalized().toRotationMatrix();
     out.b = Pose{rotationB, anchor - rotationB * b.centroid()};
     // The exact touching distance along `direction`, from the reference.
     const PosedHull pa = posed(a, out.a), pb = posed(b, out.b);

@@ -72,7 +72,8 @@ std::string checkContacts(const Manifold& m, const PosedHull& a, const PosedHull
     }
     if (m.pointCount < 1 || m.pointCount > std::min(settings.maxContacts, kMaxManifoldPoints))
         return "point count " + std::to_string(m.pointCount) + " out of range";
-    if (!m.normal.allFinite() || std::abs(m.normal.norm() - 1) > 1e-12) return "normal not finite and unit";
+    if (!m.normal.allFinite() || std::abs(m.normal.norm() - 1) > 1e-12)
+        return "normal not finite and unit: length − 1 = " + std::to_string((m.normal.norm() - 1) * 1e12) + "e-12";
     const Vec3L n = toLong(m.normal);
     double deepest = -INFINITY;
     for (int i = 0; i < m.pointCount; ++i) {
@@ -125,8 +126,35 @@ std::string checkMirror(const Manifold& m, const Manifold& swapped, double size)
     return "";
 }
 
-// One posed pair through the oracle, both ways round.
+std::string dump(const char* label, const Manifold& m, double size) {
+    std::ostringstream out;
+    out.precision(9);
+    out << "\n  " << label << ": " << m.pointCount << " points, normal (" << m.normal.transpose() << "), features "
+        << int(m.featureA.type) << ':' << m.featureA.index << ' ' << int(m.featureB.type) << ':' << m.featureB.index;
+    for (int i = 0; i < m.pointCount; ++i)
+        out << "\n    (" << m.points[i].position.transpose() << ") depth " << m.points[i].depth / size << "·s";
+    return out.str();
+}
+
+std::string checkPairDetailed(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
+                              const Settings& settings);
+
+// One posed pair through the oracle, both ways round; with GDCONTACT_ORACLE_DUMP=1 a violation
+// comes with both contact sets.
 std::string checkPair(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB, const Settings& settings) {
+    std::string problem = checkPairDetailed(a, poseA, b, poseB, settings);
+    if (!problem.empty() && environmentNumber("GDCONTACT_ORACLE_DUMP", 0)) {
+        const double size = a.radius() + b.radius();
+        const PosedHull pa = posed(a, poseA), pb = posed(b, poseB);
+        problem += "\n  size " + std::to_string(size) + ", exact overlap " +
+                   std::to_string(double(minimumOverlap(pa, pb, minkowskiAxes(pa, pb)) / size)) + "·s";
+        problem += dump("collide(A, B)", collide(a, poseA, b, poseB, settings), size);
+        problem += dump("collide(B, A)", collide(b, poseB, a, poseA, settings), size);
+    }
+    return problem;
+}
+
+std::string checkPairDetailed(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB, const Settings& settings) {
     const PosedHull pa = posed(a, poseA), pb = posed(b, poseB);
     const std::vector<Vec3L> axes = minkowskiAxes(pa, pb);
     const Real overlap = minimumOverlap(pa, pb, axes);
