@@ -146,22 +146,28 @@ inline Real signedDistance(const PosedHull& hull, const Vec3L& x) {
 
 /// Along the line x + s·n: the highest s of the hull's upper envelope (the min over faces facing
 /// along n of where the line crosses their plane) — the exit of the line from the hull when it
-/// crosses it, continued as the faces' planes just outside. Faces within 1e-12 of parallel to n are
-/// skipped (the line runs along them: they bound it sideways, not along n).
-inline Real topAlong(const PosedHull& hull, const Vec3L& x, const Vec3L& n) {
+/// crosses it, continued as the faces' planes just outside. Every plane is moved out by `grow`
+/// (negative: in). Faces within 1e-12 of parallel to n are skipped (the line runs along them: they
+/// bound it sideways, not along n).
+inline Real topAlong(const PosedHull& hull, const Vec3L& x, const Vec3L& n, Real grow = 0) {
     Real top = INFINITY;
     for (std::size_t f = 0; f < hull.normals.size(); ++f) {
         const Real c = hull.normals[f].dot(n);
-        if (c > 1e-12L) top = std::min(top, (hull.offsets[f] - hull.normals[f].dot(x)) / c);
+        if (c > 1e-12L) top = std::min(top, (hull.offsets[f] + grow - hull.normals[f].dot(x)) / c);
     }
     return top;
 }
-inline Real bottomAlong(const PosedHull& hull, const Vec3L& x, const Vec3L& n) { return -topAlong(hull, x, -n); }
+inline Real bottomAlong(const PosedHull& hull, const Vec3L& x, const Vec3L& n, Real grow = 0) {
+    return -topAlong(hull, x, -n, grow);
+}
 
 /// The exact penetration along the line through x in direction n: how far A must move along −n
-/// for A's part of that line to clear B's (top of A minus bottom of B).
-inline Real penetrationAt(const PosedHull& a, const PosedHull& b, const Vec3L& x, const Vec3L& n) {
-    return topAlong(a, x, n) - bottomAlong(b, x, n);
+/// for A's part of that line to clear B's (top of A minus bottom of B), with both hulls grown by
+/// `grow`. Near a face almost parallel to n it changes fast with x (by 1/cos of the face's angle
+/// to n per unit of sideways motion), so a point that may be off by a tolerance sideways is judged
+/// between the penetrations of the hulls shrunk and grown by that tolerance.
+inline Real penetrationAt(const PosedHull& a, const PosedHull& b, const Vec3L& x, const Vec3L& n, Real grow = 0) {
+    return topAlong(a, x, n, grow) - bottomAlong(b, x, n, grow);
 }
 
 }  // namespace gdc::oracle
