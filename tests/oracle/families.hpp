@@ -68,8 +68,8 @@ inline std::vector<Vec3> shapePoints(ShapeFamily family, Random& random) {
             }
             break;
         }
-        case ShapeFamily::Wedge: {  // a triangular prism whose roof is nearly flat (1e-3..1 high)
-            const double width = uniform(random, 0.2, 1), height = logUniform(random, 1e-3, 1);
+        case ShapeFamily::Wedge: {  // a triangular prism whose roof is nearly flat (1e-4..1 high)
+            const double width = uniform(random, 0.2, 1), height = logUniform(random, 1e-4, 1);
             const double depth = uniform(random, 0.05, 0.5);
             for (double x : {-1.0, 1.0}) {
                 points.emplace_back(x, -width, -depth);

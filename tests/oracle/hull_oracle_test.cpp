@@ -284,3 +284,175 @@ TEST_CASE("oracle: nearly flat roof on nearly flat roof, edge to edge", "[oracle
     const int wedge = static_cast<int>(ShapeFamily::Wedge);
     CHECK(runOracle(seedOr(21200000), pairsOr(1500), wedge, wedge, static_cast<int>(PoseFamily::EdgeEdge)).violations == 0);
 }
+
+namespace {
+
+// The half-space {m·x ≤ offset} as a reference hull: one plane, no vertices.
+PosedHull halfSpaceHull(const Vec3L& m, Real offset) {
+    PosedHull out;
+    out.normals.push_back(m);
+    out.offsets.push_back(offset);
+    return out;
+}
+
+// A posed hull against a half-space, checked against the exact answer: the overlap is
+// offset − min over A of m·x, the normal is −m, each point's depth is the penetration along the
+// normal through it (no 1 % slack: this path lifts every vertex exactly).
+std::string checkHalfSpace(const Polytope& a, const Pose& poseA, const HalfSpace& plane, const Settings& settings,
+                           Worst& worst) {
+    const PosedHull pa = posed(a, poseA);
+    const Vec3L m = toLong(plane.normal) / toLong(plane.normal).norm();
+    const Real offset = Real(plane.offset) / toLong(plane.normal).norm();
+    Real lowest = INFINITY;
+    for (const Vec3L& v : pa.vertices) lowest = std::min(lowest, m.dot(v));
+    const Real overlap = offset - lowest;
+    const double size = a.radius(), tolerance = kPositionTolerance * size;
+    Manifold manifold;
+    try {
+        manifold = collide(a, poseA, plane, settings);
+    } catch (const std::exception& error) {
+        return std::string("collide threw: ") + error.what();
+    }
+    std::ostringstream problem;
+    if (manifold.empty()) {
+        if (overlap > tolerance) problem << "no contacts although the hull is " << double(overlap / size) << "·s deep";
+        return problem.str();
+    }
+    if (overlap < -tolerance) {
+        problem << "contacts although " << double(-overlap / size) << "·s above the plane";
+        return problem.str();
+    }
+    if (manifold.pointCount < 1 || manifold.pointCount > settings.maxContacts) return "point count out of range";
+    if (!manifold.normal.allFinite() || (toLong(manifold.normal) + m).norm() > 1e-12L) return "normal is not −(plane normal)";
+    const PosedHull solid = halfSpaceHull(m, offset);
+    const Vec3L n = -m;
+    double deepest = -INFINITY;
+    for (int i = 0; i < manifold.pointCount; ++i) {
+        const ContactPoint& p = manifold.points[i];
+        if (!p.position.allFinite() || !std::isfinite(p.depth)) return "non-finite point or depth";
+        deepest = std::max(deepest, p.depth);
+        const Vec3L x = toLong(p.position), onA = x + Real(0.5 * p.depth) * n, onB = x - Real(0.5 * p.depth) * n;
+        const Real outsideA = signedDistance(pa, onA), outsideB = signedDistance(solid, onB);
+        worst.outside = std::max(worst.outside, double(std::max(outsideA, outsideB)) / size);
+        if (outsideA > tolerance || outsideB > tolerance) {
+            problem << "point " << i << " lies outside " << (outsideA > tolerance ? "the hull" : "the half-space") << " by "
+                    << double(std::max(outsideA, outsideB) / size) << "·s";
+            return problem.str();
+        }
+        const Real low = penetrationAt(pa, solid, x, n, -tolerance), high = penetrationAt(pa, solid, x, n, tolerance);
+        worst.depth = std::max(worst.depth, double(std::max(low - Real(p.depth), Real(p.depth) - high)) / size);
+        if (Real(p.depth) < low - tolerance || Real(p.depth) > high + tolerance) {
+            problem << "point " << i << " has depth " << p.depth / size << "·s, the exact penetration there is "
+                    << double(penetrationAt(pa, solid, x, n) / size) << "·s";
+            return problem.str();
+        }
+    }
+    if (std::abs(Real(deepest) - overlap) > tolerance) {
+        problem << "deepest depth " << deepest / size << "·s, the hull is " << double(overlap / size) << "·s deep";
+        return problem.str();
+    }
+    return "";
+}
+
+}  // namespace
+
+// Issue 21, part 4: every hull family (and boxes, which take the closed-form path) against
+// half-spaces, resting with small tilts, deep, on a vertex or edge, grazing and separated; the
+// plane's normal is given unnormalised (collide normalises it).
+TEST_CASE("oracle: random hulls and boxes against half-spaces", "[oracle]") {
+    const long firstSeed = seedOr(21300000), pairs = pairsOr(3000);
+    Tally tally;
+    Settings settings;
+    for (long i = 0; i < pairs; ++i) {
+        const long seed = firstSeed + i;
+        Random random(static_cast<std::uint64_t>(seed));
+        const Shape shape = randomShape(random, randomScale(random));
+        settings.maxContacts = integer(random, 1, kMaxManifoldPoints);
+        Polytope a = Polytope::box(Vec3::Ones());
+        try {
+            a = build(shape);
+        } catch (const InvalidInput& error) {
+            ++tally.rejectedHulls;
+            tally.fail("hull construction", seed, error.what());
+            continue;
+        }
+        for (int k = 0; k < kPosesPerPair; ++k) {
+            const Pose pose{randomRotation(random), a.radius() * uniform(random, 0, 3) * onSphere(random)};
+            const int arrangement = k % 5;  // resting, deep, vertex or edge, grazing, separated
+            Vec3 m = onSphere(random);
+            if (arrangement == 0) {  // a face resting on the plane, tilted by 1e-7..1e-2 rad
+                const Vec3 face = pose.rotation * a.faces()[integer(random, 0, static_cast<int>(a.faces().size()) - 1)].normal;
+                const Vec3 axis = face.cross(onSphere(random));
+                m = -(rotationAbout(axis.normalized(), logUniform(random, 1e-7, 1e-2)) * face);
+            }
+            Real lowest = INFINITY, highest = -INFINITY;
+            for (const Vec3L& v : posed(a, pose).vertices) lowest = std::min(lowest, toLong(m).dot(v)), highest = std::max(highest, toLong(m).dot(v));
+            const double extent = double(highest - lowest);
+            double depth = 0;
+            switch (arrangement) {
+                case 0: case 2: depth = logUniform(random, 1e-6, 0.2) * a.radius(); break;
+                case 1: depth = uniform(random, 0.05, 1.2) * extent; break;
+                case 3: depth = (integer(random, 0, 1) ? 1 : -1) * logUniform(random, 1e-9, 1e-3) * a.radius(); break;
+                default: depth = -logUniform(random, 1e-6, 1) * a.radius(); break;
+            }
+            const double length = logUniform(random, 1e-2, 1e2);
+            const HalfSpace plane{length * m, length * (double(lowest) + depth)};
+            ++tally.pairs;
+            Worst& worst = tally.worst;
+            const std::string problem = checkHalfSpace(a, pose, plane, settings, worst);
+            static const char* arrangements[] = {"resting", "deep", "vertex or edge", "grazing", "separated"};
+            if (!problem.empty())
+                tally.fail(std::string(name(shape.family)) + " on a half-space, " + arrangements[arrangement], seed,
+                           problem + "\n  A " + describe(pose));
+        }
+    }
+    report(tally);
+    CHECK(tally.violations == 0);
+}
+
+// Issue 21, part 4: composite bodies (2–4 random hulls at offsets in one body, each part its own
+// convex piece with its own contraction point) against a random hull or box: every part pair
+// through the same oracle, the pose built against one part so the others overlap, graze or miss.
+TEST_CASE("oracle: composites of random hulls against hulls and boxes", "[oracle]") {
+    const long firstSeed = seedOr(21400000), pairs = pairsOr(1500);
+    Tally tally;
+    Settings settings;
+    for (long i = 0; i < pairs; ++i) {
+        const long seed = firstSeed + i;
+        Random random(static_cast<std::uint64_t>(seed));
+        const double scale = randomScale(random);
+        std::vector<Polytope> parts;
+        std::vector<Pose> offsets;  // each part in the body's frame
+        const Shape other = randomShape(random, partnerScale(random, scale));
+        settings.maxContacts = integer(random, 1, kMaxManifoldPoints);
+        try {
+            for (int p = 0, count = integer(random, 2, 4); p < count; ++p) {
+                parts.push_back(build(randomShape(random, scale * uniform(random, 0.3, 1))));
+                offsets.push_back(Pose{randomRotation(random), scale * uniform(random, 0.5, 1.5) * onSphere(random)});
+            }
+            const Polytope b = build(other);
+            for (int k = 0; k < kPosesPerPair / 2; ++k) {
+                const auto family = static_cast<PoseFamily>(k % static_cast<int>(PoseFamily::Count));
+                const int anchor = integer(random, 0, static_cast<int>(parts.size()) - 1);
+                const PairPose pose = randomPairPose(random, parts[anchor], b, family);
+                // The body's pose that puts the anchor part where the pose wants it.
+                const Pose body{pose.a.rotation * offsets[anchor].rotation.transpose(),
+                                pose.a.position - pose.a.rotation * offsets[anchor].rotation.transpose() * offsets[anchor].position};
+                for (std::size_t p = 0; p < parts.size(); ++p) {
+                    const Pose partPose{body.rotation * offsets[p].rotation, body.apply(offsets[p].position)};
+                    const Pose orthonormal{Eigen::Quaterniond(partPose.rotation).normalized().toRotationMatrix(), partPose.position};
+                    ++tally.pairs;
+                    const std::string problem = checkPair(parts[p], orthonormal, b, pose.b, settings, tally.worst);
+                    if (!problem.empty())
+                        tally.fail(std::string("composite part / ") + name(other.family) + ", " + name(family), seed,
+                                   problem + "\n  part " + describe(orthonormal) + "\n  B " + describe(pose.b));
+                }
+            }
+        } catch (const InvalidInput& error) {
+            ++tally.rejectedHulls;
+            tally.fail("hull construction", seed, error.what());
+        }
+    }
+    report(tally);
+    CHECK(tally.violations == 0);
+}
