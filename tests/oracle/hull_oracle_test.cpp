@@ -209,7 +209,7 @@ struct Tally {
         ++byFamily[family];
         if (violations <= environmentNumber("GDCONTACT_ORACLE_PRINT", 10))
             std::printf("oracle violation (%s): %s\n  rerun: GDCONTACT_ORACLE_SEED=%ld GDCONTACT_ORACLE_PAIRS=1 "
-                        "tests/oracle/oracle_tests \"%s\"\n",
+                        "build/tests/oracle/oracle_tests \"%s\"\n",
                         family.c_str(), what.c_str(), seed, Catch::getResultCapture().getCurrentTestName().c_str());
     }
 };
