@@ -65,9 +65,10 @@ SimplexClosest tetrahedronResult(const std::array<Vec3, 4>& p) {
     // extent (volume = height·|face normal|): relative to its own size, so a tetrahedron of a pair
     // 1e-3 in size is judged as one of size 1. (It compared volume, a length cubed, with the face
     // normal squared, a length to the fourth: below size 1 no tetrahedron was ever flat, issue 21.)
+    // Squared on both sides (no square roots): volume² < (1e-14)²·|normal|²·extent².
     double extentSquared = 0;
     for (int i = 1; i < 4; ++i) extentSquared = std::max(extentSquared, (p[i] - p[0]).squaredNorm());
-    const double extent = std::sqrt(extentSquared);
+    const double flatScale = 1e-28 * extentSquared, volumeSquared = volume * volume;
     auto closestOnFaces = [&](bool everyFace) {
         SimplexClosest best;
         double bestDistance = INFINITY;
@@ -78,7 +79,7 @@ SimplexClosest tetrahedronResult(const std::array<Vec3, 4>& p) {
             double oppositeSide = normal.dot(p[f[3]] - p[f[0]]);
             // The origin is outside this face when it lies on the other side from the fourth
             // vertex; a flat tetrahedron has every face tested.
-            bool outside = everyFace || originSide * oppositeSide < 0 || std::abs(volume) < 1e-14 * normal.norm() * extent;
+            bool outside = everyFace || originSide * oppositeSide < 0 || volumeSquared < flatScale * normal.squaredNorm();
             if (!outside) continue;
             outsideAny = true;
             SimplexClosest r = triangleResult(p[f[0]], p[f[1]], p[f[2]], f[0], f[1], f[2]);
