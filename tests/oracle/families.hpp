@@ -225,7 +225,15 @@ inline PairPose randomPairPose(Random& random, const Polytope& a, const Polytope
             const Vec3 outA = out.a.rotation * (a.faces()[ea.leftFace].normal + a.faces()[ea.rightFace].normal).normalized();
             const Vec3 outB = (b.faces()[eb.leftFace].normal + b.faces()[eb.rightFace].normal).normalized();
             rotationB = rotationOnto(rotationB * outB, -outA) * rotationB;
-            rotationB = rotationAbout(outA, uniform(random, 0, 2 * M_PI)) * rotationB;
+            // The edges crossed at any angle, or (half the time) nearly parallel: 1e-6..0.1 rad.
+            const double crossing = integer(random, 0, 1) ? uniform(random, 0, 2 * M_PI)
+                                                          : integer(random, 0, 1) * M_PI + (integer(random, 0, 1) ? 1 : -1) * logUniform(random, 1e-6, 0.1);
+            const Vec3 edgeA = (out.a.rotation * (a.vertices()[ea.head] - a.vertices()[ea.tail])).normalized();
+            const Vec3 edgeB = rotationB * (b.vertices()[eb.head] - b.vertices()[eb.tail]);
+            // Turn B about outA so its edge lies along A's (projected on the plane ⟂ outA), then by the crossing angle.
+            const Vec3 projectedB = (edgeB - edgeB.dot(outA) * outA).normalized();
+            const double aligned = std::atan2(outA.dot(projectedB.cross(edgeA)), projectedB.dot(edgeA));
+            rotationB = rotationAbout(outA, (std::isfinite(aligned) ? aligned : 0) + crossing) * rotationB;
             direction = outA;
             const Vec3 middle = 0.5 * (a.vertices()[ea.tail] + a.vertices()[ea.head]);
             anchor += blend * (out.a.apply(middle) - anchor);
