@@ -111,8 +111,9 @@ RayCastResult gjkRayCast(const Support& support, const Vec3& origin, const Vec3&
                 // A − B, the edge–edge depth then 0.2 % deeper than the exact penetration (issue
                 // 21). Only ever forward (λ grows to the hit), and only where the hit lies in the
                 // facet's triangle, so the witnesses' weights stay convex.
+                // A converged cast (|v| within the tolerance) is already on the facet to the tolerance.
                 const double along = facetNormal.dot(direction);
-                if (along < -1e-6) {
+                if (v.squaredNorm() > toleranceSquared && along < -1e-6) {
                     const double lambda = (height - facetNormal.dot(origin)) / along;
                     if (lambda > result.lambda) {
                         const Vec3 hit = origin + lambda * direction;
