@@ -2,6 +2,7 @@
 // through the same validation and coplanar merging as explicit faces, so one path builds them all.
 #include <gdcontact/polytope.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -28,7 +29,11 @@ public:
     QhullRun& operator=(const QhullRun&) = delete;
 
     bool run(std::vector<double>& coordinates) {
-        char options[] = "qhull Qt";  // triangulated output; coplanar triangles are merged by fromFaces
+        // Qhull's default merging (C-0): facets coplanar within its rounding are merged into one
+        // polygon, so no facet is a sliver of rounding. Triangulated output (Qt) was used before;
+        // it splits merged facets into triangles, some of zero area, which fromFaces then had to
+        // reject ("face N has zero area" for valid hulls with a tiny cut corner, issue 21).
+        char options[] = "qhull";
         int exitCode = qh_new_qhull(&qh_, 3, static_cast<int>(coordinates.size() / 3), coordinates.data(),
                                     False, options, nullptr, errors_);
         return exitCode == 0;
@@ -66,17 +71,34 @@ Polytope Polytope::fromPoints(const std::vector<Vec3>& points, const Settings& s
     std::vector<std::vector<int>> faces;
     facetT* facet;
     FORALLfacets {
-        std::vector<int> triangle;
+        // The facet's vertices in order around it (qhull orders a 3-d facet's vertices by its
+        // ridges); the winding is then made counter-clockwise seen from outside by qhull's normal.
+        std::vector<int> loop;
+        setT* ordered = qh_facet3vertex(qh, facet);
         vertexT *vertex, **vertexp;
-        FOREACHvertex_(facet->vertices) triangle.push_back(qh_pointid(qh, vertex->point));
-        if (triangle.size() != 3) throw InvalidInput("qhull returned a non-triangular facet");
+        FOREACHvertex_(ordered) loop.push_back(qh_pointid(qh, vertex->point));
+        qh_settempfree(qh, &ordered);
+        if (loop.size() < 3) throw InvalidInput("qhull returned a facet with fewer than 3 vertices");
         const Vec3 normal(facet->normal[0], facet->normal[1], facet->normal[2]);
-        const Vec3& a = points[triangle[0]];
-        if ((points[triangle[1]] - a).cross(points[triangle[2]] - a).dot(normal) < 0)
-            std::swap(triangle[1], triangle[2]);  // counter-clockwise seen from outside
-        faces.push_back(std::move(triangle));
+        Vec3 area = Vec3::Zero();  // Newell's normal about the loop's first vertex (its own scale)
+        const Vec3& origin = points[loop[0]];
+        for (std::size_t i = 1; i + 1 < loop.size(); ++i)
+            area += (points[loop[i]] - origin).cross(points[loop[i + 1]] - origin);
+        if (area.dot(normal) < 0) std::reverse(loop.begin(), loop.end());
+        faces.push_back(std::move(loop));
     }
-    return fromFaces(points, faces, settings);
+    // Merging faces within Settings::coplanarTolerance cleans noisy hulls, but must never cost a
+    // valid one: a hull thinner than that angle times its width (a tetrahedron 1e-9 of its size
+    // high, issue 21) would merge into a flat polygon. Qhull's own facets are then kept — they are
+    // convex and planar to qhull's rounding, so they always form a polytope.
+    try {
+        return fromFaces(points, faces, settings);
+    } catch (const InvalidInput&) {
+        if (settings.coplanarTolerance == 0) throw;
+        Settings unmerged = settings;
+        unmerged.coplanarTolerance = 0;
+        return fromFaces(points, faces, unmerged);
+    }
 }
 
 }  // namespace gdc

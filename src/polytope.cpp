@@ -15,17 +15,34 @@ namespace {
 
 std::string faceName(std::size_t face) { return "face " + std::to_string(face); }
 
-// Newell's method: robust area-weighted normal of a (possibly slightly non-planar) polygon.
+// Newell's method: robust area-weighted normal of a (possibly slightly non-planar) polygon. Taken
+// about the loop's first vertex, so its rounding is relative to the face's own extent rather than
+// to its distance from the origin: a face 1e-7 of the hull's size wide keeps a normal good to
+// rounding (issue 21).
 Vec3 newellNormal(const std::vector<Vec3>& vertices, const std::vector<int>& loop) {
     Vec3 normal = Vec3::Zero();
+    const Vec3& origin = vertices[loop[0]];
     for (std::size_t i = 0; i < loop.size(); ++i) {
-        const Vec3& p = vertices[loop[i]];
-        const Vec3& q = vertices[loop[(i + 1) % loop.size()]];
+        const Vec3 p = vertices[loop[i]] - origin;
+        const Vec3 q = vertices[loop[(i + 1) % loop.size()]] - origin;
         normal += Vec3((p.y() - q.y()) * (p.z() + q.z()), (p.z() - q.z()) * (p.x() + q.x()),
                        (p.x() - q.x()) * (p.y() + q.y()));
     }
     return normal;  // length = 2 · area
 }
+
+// The squared extent of a face (its bounding box's diagonal): the scale its area is judged by.
+double squaredExtent(const std::vector<Vec3>& vertices, const std::vector<int>& loop) {
+    Vec3 lo = vertices[loop[0]], hi = lo;
+    for (int v : loop) lo = lo.cwiseMin(vertices[v]), hi = hi.cwiseMax(vertices[v]);
+    return (hi - lo).squaredNorm();
+}
+
+// A face has zero area when its area is below rounding of its own extent: 1e-12 of its extent
+// squared (a width below 1e-12 of its length), whatever the hull's size — a cut corner 1e-7 of
+// the hull's size is a real face with a well-defined normal, a sliver of rounding is not.
+constexpr double kZeroAreaRatio = 1e-12;
+bool hasZeroArea(const Vec3& newell, double extentSquared) { return !(newell.norm() > kZeroAreaRatio * extentSquared); }
 
 // A face loop must turn one way only (no reflex corner) and exactly once around (a bow tie
 // turns both ways, a pentagram twice): the turning angles must sum to 2π.
@@ -79,10 +96,13 @@ std::vector<std::vector<int>> mergeCoplanarFaces(const std::vector<Vec3>& vertic
     for (const auto& loop : faces) normals.push_back(newellNormal(vertices, loop).normalized());
     const DirectedEdges edges = directedEdges(faces);
     UnionFind groups(faces.size());
-    const double cosTolerance = std::cos(coplanarTolerance);
+    // The angle by its sine (the cross product), which resolves angles down to rounding, where a
+    // cosine is 1.0 for every angle below 1.5e-8 rad; a tolerance of 0 merges nothing.
+    const double sinTolerance = std::sin(coplanarTolerance);
     for (const auto& [key, face] : edges) {
         int other = edges.at({key.second, key.first});
-        if (normals[face].dot(normals[other]) >= cosTolerance) groups.unite(face, other);
+        if (normals[face].dot(normals[other]) > 0 && normals[face].cross(normals[other]).norm() < sinTolerance)
+            groups.unite(face, other);
     }
     // Boundary of each group: directed edges whose opposite edge belongs to another group.
     std::map<int, std::map<int, int>> nextInGroup;  // group → (tail → head)
@@ -151,7 +171,7 @@ Polytope Polytope::fromFaces(const std::vector<Vec3>& vertices, const std::vecto
     if (!(size > 0)) throw InvalidInput("all vertices coincide");
     for (std::size_t f = 0; f < faces.size(); ++f) {
         const Vec3 normal = newellNormal(vertices, faces[f]);
-        if (normal.norm() <= 1e-12 * size * size)
+        if (hasZeroArea(normal, squaredExtent(vertices, faces[f])))
             throw InvalidInput(faceName(f) + " has zero area (collinear vertices, or a self-intersecting loop)");
         if (!isConvexLoop(vertices, faces[f], normal.normalized()))
             throw InvalidInput(faceName(f) + " is not a convex polygon (self-intersecting or reflex)");
@@ -175,8 +195,8 @@ Polytope Polytope::fromFaces(const std::vector<Vec3>& vertices, const std::vecto
         face.first = static_cast<int>(p.faceVertices_.size());
         face.count = static_cast<int>(loop.size());
         for (int& v : loop) v = renumber[v], p.faceVertices_.push_back(v);
-        Vec3 normal = newellNormal(p.vertices_, loop);
-        if (normal.norm() <= 1e-12 * size * size)
+        Vec3 normal = loop.size() < 3 ? Vec3::Zero() : newellNormal(p.vertices_, loop);
+        if (loop.size() < 3 || hasZeroArea(normal, squaredExtent(p.vertices_, loop)))
             throw InvalidInput("a merged face has zero area: the polytope is flat (no interior)");
         face.normal = normal.normalized();
         face.offset = -1e300;

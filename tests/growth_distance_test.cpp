@@ -105,3 +105,36 @@ TEST_CASE("the closed-form growth distance of two boxes equals the GJK ray cast"
         CHECK(closedForm.normal.dot(cast.normal) > 1 - 1e-9);
     }
 }
+
+// Issue 21: a parallelogram facet of A − B (two parallel edges, as needles have) makes a flat
+// tetrahedron in the ray cast. Its flatness was judged by volume against a face normal squared —
+// a length cubed against a length to the fourth — so at size 1e-3 no tetrahedron was flat, and the
+// barycentric weights of a rounding-sized volume came out ±1600: the cast's witness points, and
+// the contact placed between them, lay far outside both bodies. Every weight must stay convex.
+TEST_CASE("closest point of a flat tetrahedron has convex weights at every scale") {
+    std::mt19937_64 random(2101);
+    std::uniform_real_distribution<double> unit(-1, 1), tiny(-1e-15, 1e-15);
+    for (double scale : {1e-3, 1e-1, 1.0, 1e3})
+        for (int trial = 0; trial < 2000; ++trial) {
+            // A parallelogram through (near) the origin, its fourth corner lifted by rounding.
+            const Vec3 corner(unit(random), unit(random), unit(random)), u(unit(random), unit(random), unit(random)),
+                v(unit(random), unit(random), unit(random));
+            const double s = 0.3 * (unit(random) + 1.5), t = 0.3 * (unit(random) + 1.5);
+            const Vec3 origin = corner + s * u + t * v;  // inside the parallelogram
+            std::array<Vec3, 4> points = {scale * (corner - origin), scale * (corner + u - origin),
+                                          scale * (corner + u + v - origin), scale * (corner + v - origin)};
+            points[2] += scale * Vec3(tiny(random), tiny(random), tiny(random));
+            const auto closest = gdc::detail::closestPointToOrigin(points, 4);
+            CAPTURE(scale, trial);
+            double sum = 0;
+            Vec3 combination = Vec3::Zero();
+            for (int i = 0; i < closest.count; ++i) {
+                CHECK(closest.weights[i] >= -1e-9);
+                CHECK(closest.weights[i] <= 1 + 1e-9);
+                sum += closest.weights[i];
+                combination += closest.weights[i] * points[closest.used[i]];
+            }
+            CHECK(sum == Approx(1).margin(1e-9));
+            CHECK(combination.norm() <= 1e-9 * scale);
+        }
+}

@@ -131,6 +131,49 @@ TEST_CASE("explicit triangulated faces of a cube are merged into six quads") {
     CHECK(cube.edges().size() == 12);
 }
 
+// Issue 21: qhull's triangulated output split such hulls into triangles and the tiny one was
+// refused as "zero area"; every point set that spans a volume is a valid hull.
+TEST_CASE("a tetrahedron with a corner cut by 1e-6 of its size is accepted with its tiny face") {
+    const Polytope cut = Polytope::fromPoints({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 0.999999),
+                                               Vec3(1e-6, 0, 0.999999), Vec3(0, 1e-6, 0.999999)});
+    CHECK(cut.vertices().size() == 6);
+    CHECK(cut.faces().size() == 5);
+    CHECK(cut.edges().size() == 9);
+    CHECK(cut.volume() == Approx(1.0 / 6).epsilon(1e-9));
+    bool hasTinyTop = false;
+    for (const auto& face : cut.faces()) hasTinyTop |= face.normal.isApprox(Vec3::UnitZ(), 1e-9);
+    CHECK(hasTinyTop);
+}
+
+TEST_CASE("hulls with features down to 1e-12 of their size, anywhere, are accepted") {
+    for (double cut : {1e-2, 1e-5, 1e-7, 1e-9, 1e-12})
+        for (double scale : {1e-3, 1.0, 1e3})
+            for (double away : {0.0, 1e3}) {
+                CAPTURE(cut, scale, away);
+                const Vec3 shift(away, -away, 0.5 * away);
+                std::vector<Vec3> points;
+                for (int i = 0; i < 8; ++i) {  // a box whose +x+y+z corner is cut
+                    const Vec3 c(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1);
+                    if (i != 7) {
+                        points.push_back(scale * c + shift);
+                        continue;
+                    }
+                    for (const Vec3& towards : {Vec3(-1, 1, 1), Vec3(1, -1, 1), Vec3(1, 1, -1)})
+                        points.push_back(scale * (c + cut * (towards - c)) + shift);
+                }
+                const Polytope hull = Polytope::fromPoints(points);
+                CHECK(hull.volume() == Approx(8 * scale * scale * scale).epsilon(1e-6));
+                for (const auto& face : hull.faces())
+                    for (const Vec3& v : hull.vertices()) CHECK(face.normal.dot(v) <= face.offset + 1e-9 * scale);
+            }
+}
+
+TEST_CASE("a tetrahedron 2e-9 of its size thick spans a volume and is accepted") {
+    const Polytope flat = Polytope::fromPoints({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0.3, 0.3, 2e-9)});
+    CHECK(flat.faces().size() == 4);
+    CHECK(flat.volume() == Approx(2e-9 / 6).epsilon(1e-6));
+}
+
 TEST_CASE("bad point sets are refused with a message") {
     requireInvalid([] { Polytope::fromPoints({}); }, "at least 4 points");
     requireInvalid([] { Polytope::fromPoints({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(3, 0, 0)}); },
@@ -140,6 +183,9 @@ TEST_CASE("bad point sets are refused with a message") {
     requireInvalid([] { Polytope::fromPoints({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(NAN, 0, 1)}); },
                    "not finite");
     requireInvalid([] { Polytope::fromPoints(std::vector<Vec3>(6, Vec3(1, 1, 1))); }, "no 3-D hull");
+    requireInvalid([] { Polytope::fromPoints({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, INFINITY, 0), Vec3(0, 0, 1)}); },
+                   "not finite");
+    requireInvalid([] { Polytope::fromPoints({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}); }, "at least 4 points");
 }
 
 TEST_CASE("bad explicit faces are refused with a message naming the problem") {

@@ -284,3 +284,47 @@ TEST_CASE("points no polygon names (inside, or outside by rounding) are taken si
     dGeomDestroy(ground);
     dGeomDestroy(geom);
 }
+
+// Issue 21: dCreateConvex data with features down to 1e-7 of the shape's size (a corner cut off a
+// box, a roof of two faces 1e-6 rad apart) is what scanned and CAD meshes hold: createConvex takes
+// it, in dCreateConvex's own layout and as a point cloud, and the geom rests on a plane.
+TEST_CASE("dCreateConvex data with tiny features (cut corners, nearly coplanar faces) is taken", "[ode][convex][data]") {
+    OdeSession session;
+    for (double cut : {1e-2, 1e-4, 1e-6, 1e-7})
+        for (double scale : {1e-3, 1.0, 1e3}) {
+            INFO("cut " << cut << ", scale " << scale);
+            std::vector<Vec3> points;
+            for (int i = 0; i < 8; ++i) {
+                const Vec3 c(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 0.5 : -0.5);
+                if (i != 7) {
+                    points.push_back(scale * c);
+                    continue;
+                }
+                for (const Vec3& towards : {Vec3(-1, 1, 0.5), Vec3(1, -1, 0.5), Vec3(1, 1, -0.5)})
+                    points.push_back(scale * (c + cut * (towards - c)));
+            }
+            points.push_back(scale * Vec3(0, -1, 0.5 + 1e-6));  // a ridge 1e-6 rad high across the top
+            points.push_back(scale * Vec3(0, 1, 0.5 + 1e-6));
+            const Polytope exact = Polytope::fromPoints(points);
+            OdeData data;  // full precision: the layout as a program would pass its own mesh
+            for (const Vec3& vertex : exact.vertices())
+                for (int axis = 0; axis < 3; ++axis) data.points.push_back(vertex[axis]);
+            for (const Polytope::Face& face : exact.faces()) {
+                for (int axis = 0; axis < 3; ++axis) data.planes.push_back(face.normal[axis]);
+                data.planes.push_back(face.offset);
+                data.polygons.push_back(static_cast<unsigned>(face.count));
+                for (int k = 0; k < face.count; ++k)
+                    data.polygons.push_back(static_cast<unsigned>(exact.faceVertices()[face.first + k]));
+            }
+            dGeomID geom = data.create();
+            REQUIRE(geom);
+            const auto hull = gdc::ode::polytopeOf(geom);
+            REQUIRE(hull);
+            CHECK(hull->volume() == Approx(exact.volume()).epsilon(1e-6));
+            checkRestsOnGround(geom, *hull);
+            dGeomDestroy(geom);
+            dGeomID cloud = gdc::ode::createConvex(0, data.points.data(), data.pointCount());
+            REQUIRE(cloud);
+            dGeomDestroy(cloud);
+        }
+}
