@@ -8,13 +8,14 @@ bench_solver_seeds --out RESULTS_DIR writes them. Output: the Markdown section "
 stability of each contender against its whole-step cost on identical states, one panel per scene.
 Plots use matplotlib (Debian's python3-matplotlib), drawn as scripts/report.py draws.
 
-Usage: scripts/solver_seeds_report.py RESULTS_DIR [--append REPORT_MD] [--markdown OUT_MD]
+Usage: scripts/solver_seeds_report.py RESULTS_DIR [--append REPORT_MD] [--markdown OUT_MD] [--docs DOCS_DIR]
                                       [--plot-link PATH] [--heading-level N]
 """
 import argparse
 import csv
 import math
 import os
+import shutil
 
 import matplotlib
 
@@ -119,7 +120,7 @@ def plot(rows, scenes, results):
     return path
 
 
-def section(results, plot_link, level):
+def section(results, plot_link, level, reproduce=None):
     h = "#" * level
     rows = read_csv(os.path.join(results, "solver_seeds_summary.csv"))
     scenes = read_csv(os.path.join(results, "solver_seeds_scenes.csv"))
@@ -135,7 +136,8 @@ def section(results, plot_link, level):
                "(`gdc::ode::collide` in the near callback, boxes as dBox geoms), **ODE dBox** (ODE's own colliders, "
                "boxes as dBox), **ODE dConvex** (ODE's own colliders, every shape a dConvex: libccd's one-point "
                "collider), and gdcontact settings variants (`gdc:NAME=VALUE`).\n")
-    out.append(f"Command: `{command[0]}` — {command[1] if len(command) > 1 else ''}\n")
+    out.append(f"Command: `{command[0]}` — {command[1] if len(command) > 1 else ''}"
+               + (f". Reproduce: `{reproduce}`." if reproduce else "") + "\n")
     out.append("Failure limits (one table, `failureLimits()` in bench/solver_seeds/solver_seeds.cpp); a run fails when "
                "a limit is crossed and still crossed at the end of the run, or at once when it explodes:\n")
     out.append("| failure | scenes | rule |\n|---|---|---|")
@@ -190,6 +192,22 @@ def section(results, plot_link, level):
     return "\n".join(out) + "\n", rows, scenes
 
 
+BEGIN = "<!-- solver-seeds: begin (written by scripts/solver_seeds, scripts/solver_seeds_report.py) -->"
+END = "<!-- solver-seeds: end -->"
+
+
+def splice(doc_path, text):
+    """The section between its two marker lines of docs/benchmarks.md, replaced or appended (as
+    bench/big_report.py places the Big worlds section; bench/report.py keeps both)."""
+    block = f"{BEGIN}\n{text.rstrip()}\n{END}\n"
+    existing = open(doc_path).read() if os.path.exists(doc_path) else "# Benchmarks\n"
+    if BEGIN in existing and END in existing:
+        before = existing[:existing.index(BEGIN)]
+        after = existing[existing.index(END) + len(END):].lstrip("\n")
+        return before + block + ("\n" + after if after else "")
+    return existing.rstrip("\n") + "\n\n" + block
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("results")
@@ -197,9 +215,21 @@ def main():
     parser.add_argument("--markdown", help="write the section to this file")
     parser.add_argument("--plot-link", default="solver_seeds.png", help="how the section links the plot")
     parser.add_argument("--heading-level", type=int, default=2)
+    parser.add_argument("--reproduce", help="the repository command that made these results, for the section")
+    parser.add_argument("--docs", help="docs directory: write the section into DOCS/benchmarks.md (between its "
+                        "markers) and the plot to DOCS/images/bench_solver_seeds.png")
     args = parser.parse_args()
-    text, rows, scenes = section(args.results, args.plot_link, args.heading_level)
-    plot(rows, scenes, args.results)
+    if args.docs:
+        args.plot_link = "images/bench_solver_seeds.png"
+    text, rows, scenes = section(args.results, args.plot_link, args.heading_level, args.reproduce)
+    path = plot(rows, scenes, args.results)
+    if args.docs:
+        os.makedirs(os.path.join(args.docs, "images"), exist_ok=True)
+        shutil.copyfile(path, os.path.join(args.docs, "images", "bench_solver_seeds.png"))
+        doc = os.path.join(args.docs, "benchmarks.md")
+        spliced = splice(doc, text)
+        with open(doc, "w") as f:
+            f.write(spliced)
     if args.append:
         with open(args.append, "a") as f:
             f.write("\n" + text)

@@ -4,7 +4,8 @@
 // share it), measures the cost of one step on identical states, and writes CSV files.
 //
 // Usage: bench_solver_seeds [--quick | --full] [--out DIR] [--scene NAME]... [--stepper NAME]...
-//          [--contender SPEC]... [--no-default-contenders] [--seeds N] [--first-seed N] [--jobs N]
+//          [--contender SPEC]... [--no-default-contenders] [--seeds N] [--seeds-for SCENE[:STEPPER]=N]...
+//          [--first-seed N] [--jobs N]
 //          [--no-sleep] [--duration-scale X] [--cost-states N] [--cost-repetitions N] [--no-cost]
 //   SPEC: gdc | ode-box | ode-convex | gdc:NAME=VALUE[,NAME=VALUE...] (a gdc::Settings variant)
 // Writes DIR/solver_seeds_runs.csv (one row per run), DIR/solver_seeds_summary.csv (one row per
@@ -51,6 +52,7 @@ struct Options {
     int costStates = -1;
     int costRepetitions = 3;
     bool cost = true;
+    std::map<std::string, int> seedsFor;  // "SCENE" or "SCENE:STEPPER" → seeds (--seeds-for)
     std::string command;
 };
 
@@ -96,6 +98,13 @@ Options parse(int argc, char** argv) {
         else if (a == "--no-default-contenders") o.defaultContenders = false;
         else if (a == "--seeds") o.seeds = std::stoi(value(i));
         else if (a == "--first-seed") o.firstSeed = std::stoi(value(i));
+        else if (a == "--seeds-for") {
+            const std::string item = value(i);
+            const auto equals = item.find('=');
+            if (equals == std::string::npos || std::stoi(item.substr(equals + 1)) < 1)
+                throw std::invalid_argument("--seeds-for SCENE[:STEPPER]=N, N >= 1");
+            o.seedsFor[item.substr(0, equals)] = std::stoi(item.substr(equals + 1));
+        }
         else if (a == "--jobs") o.jobs = std::stoi(value(i));
         else if (a == "--no-sleep") o.sleep = false;
         else if (a == "--duration-scale") o.durationScale = std::stod(value(i));
@@ -105,7 +114,8 @@ Options parse(int argc, char** argv) {
         else if (a == "--help" || a == "-h") {
             std::cout << "bench_solver_seeds [--quick | --full] [--out DIR] [--scene NAME]... [--stepper NAME]...\n"
                          "  [--contender gdc|ode-box|ode-convex|gdc:NAME=VALUE,...]... [--no-default-contenders]\n"
-                         "  [--seeds N] [--first-seed N] [--jobs N] [--no-sleep] [--duration-scale X]\n"
+                         "  [--seeds N] [--seeds-for SCENE[:STEPPER]=N]... [--first-seed N] [--jobs N] [--no-sleep]\n"
+                         "  [--duration-scale X]\n"
                          "  [--cost-states N] [--cost-repetitions N] [--no-cost]\nsettings:";
             for (const std::string& name : ss::settingNames()) std::cout << ' ' << name;
             std::cout << "\nscenes:";
@@ -220,7 +230,9 @@ int main(int argc, char** argv) {
         const int costStates = o.costStates >= 0 ? o.costStates : (o.mode == "full" ? 8 : o.mode == "quick" ? 0 : 5);
         const int workers = o.jobs > 0 ? o.jobs : std::max(1u, std::thread::hardware_concurrency());
 
-        auto seedsFor = [&](const ss::SceneSpec& s, bool quickStepper) {
+        auto seedsFor = [&](const ss::SceneSpec& s, bool quickStepper, const std::string& stepper = "") {
+            if (!stepper.empty() && o.seedsFor.count(s.name + ":" + stepper)) return o.seedsFor.at(s.name + ":" + stepper);
+            if (o.seedsFor.count(s.name)) return o.seedsFor.at(s.name);
             if (o.seeds > 0) return o.seeds;
             if (o.mode == "quick") return 5;
             if (o.mode == "full") return 50;
@@ -236,7 +248,7 @@ int main(int argc, char** argv) {
             for (std::size_t ti = 0; ti < steppers.size(); ++ti)
                 for (std::size_t ci = 0; ci < contenders.size(); ++ci)
                     if (applies(scenes[si], steppers[ti], contenders[ci]))
-                        for (int k = 0; k < seedsFor(scenes[si], steppers[ti].quick); ++k) jobs.push_back({si, ti, ci, o.firstSeed + k});
+                        for (int k = 0; k < seedsFor(scenes[si], steppers[ti].quick, steppers[ti].name); ++k) jobs.push_back({si, ti, ci, o.firstSeed + k});
         // The longest runs first, so that no worker is left with one at the end.
         std::stable_sort(jobs.begin(), jobs.end(), [&](const Job& a, const Job& b) {
             auto weight = [&](const Job& j) { return scenes[j.scene].name == "pile1000" ? 2 : !steppers[j.stepper].quick ? 1 : 0; };
@@ -412,8 +424,8 @@ int main(int argc, char** argv) {
             std::ofstream f(prefix + "scenes.csv");
             f << "scene,description,seconds,seeds,world_seeds,world_step,world_skip_reason,ode_box\n";
             for (const ss::SceneSpec& s : scenes)
-                f << s.name << ',' << csvText(s.description) << ',' << s.duration * o.durationScale << ',' << seedsFor(s, true) << ','
-                  << (s.worldStep ? seedsFor(s, false) : 0) << ',' << s.worldStep << ',' << csvText(s.worldSkipReason) << ',' << s.hasBoxes << '\n';
+                f << s.name << ',' << csvText(s.description) << ',' << s.duration * o.durationScale << ','
+                  << seedsFor(s, true, "quick20") << ',' << (s.worldStep ? seedsFor(s, false, "world") : 0) << ',' << s.worldStep << ',' << csvText(s.worldSkipReason) << ',' << s.hasBoxes << '\n';
         }
         {
             std::ofstream f(prefix + "limits.csv");
