@@ -589,18 +589,18 @@ Stepper parseStepper(const std::string& name) {
 const std::vector<SceneSpec>& sceneSpecs() {
     static const std::vector<SceneSpec> specs = {
         {"stack10", "10 cubes of 20 cm, 1 kg/dm³, stacked", 4.0, true, false, true, "", 50},
-        {"stack20", "20 cubes of 20 cm stacked", 4.0, true, false, true, "", 50, 10},
+        {"stack20", "20 cubes of 20 cm stacked", 4.0, true, false, true, "", 50, 20},
         {"heavy100", "a 100 kg box (70×30×20 cm) across two 1 kg cubes 20 cm apart", 3.0, true, false, true, "", 50},
         {"heavy1000", "a 1000 kg box across two 1 kg cubes", 3.0, true, false, true, "", 50},
-        {"pyramid", "a pyramid of 36 cubes (base 8), 5 mm apart", 4.0, true, false, true, "", 50, 6},
+        {"pyramid", "a pyramid of 36 cubes (base 8), 5 mm apart", 4.0, true, false, true, "", 50, 12},
         {"wall", "the brick wall: 6 courses of 10 bricks (30×15×10 cm) in running bond, 63 bricks", 3.0, true, false,
-         false, "one island of 63 bricks: a dWorldStep takes over a second", 20},
+         false, "one island of 63 bricks: a dWorldStep takes over a second", 50},
         {"plates20", "10 plates 50×50×2.5 cm (1:20) stacked", 3.0, true, false, true, "", 50},
         {"plates50", "10 plates 50×50×1 cm (1:50) stacked", 3.0, true, false, true, "", 50},
         {"hulls", "8 hulls stacked: hexagonal prisms and irregular slabs (30 cm, 10 cm high)", 3.0, false, false, true, "", 50},
         {"composites", "12 composites of 3–5 boxes (L, T, table, cross) dropped into a heap", 3.0, true, true, true, "", 50},
         {"pile1000", "1000 cubes of 10 cm dropped from a staggered 10×10×10 grid into a pile", 1.5, true, true, false,
-         "one island of 1000 bodies", 2},
+         "one island of 1000 bodies", 4},
         {"cards", "6 cards (20×30 cm, 5 mm) leaning in a row on each other and on a 9 kg book, each edge on the face of the one before", 3.0, true,
          false, true, "", 50},
     };
