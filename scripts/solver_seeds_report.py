@@ -21,6 +21,7 @@ import matplotlib
 
 matplotlib.use("Agg")  # files only, no display
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker as ticker  # noqa: E402
 
 STEPPER_ORDER = ["quick10", "quick20", "quick50", "world"]
 STEPPER_LABEL = {"quick10": "QuickStep 10 it.", "quick20": "QuickStep 20 it.", "quick50": "QuickStep 50 it.",
@@ -93,10 +94,17 @@ def plot(rows, scenes, results):
                 continue
             standing = 1.0 - number(r["fail_fraction"])
             low, high = 1.0 - number(r["fail_high95"]), 1.0 - number(r["fail_low95"])
+            # gdcontact's marker is larger and drawn first, so that a contender on the same spot shows on top of it
+            # (as scripts/report.py draws coinciding lines).
+            big = r["contender"] == "gdc"
             ax.errorbar([cost], [standing], yerr=[[standing - low], [high - standing]], fmt=STEPPER_MARKER.get(r["stepper"], "o"),
-                        color=colours[r["contender"]], markersize=7, capsize=2, elinewidth=0.8, alpha=0.85,
-                        markeredgecolor="black", markeredgewidth=0.5)
+                        color=colours[r["contender"]], markersize=10 if big else 6, capsize=2, elinewidth=0.8, alpha=0.85,
+                        markeredgecolor="black", markeredgewidth=0.5, zorder=2 if big else 3)
         ax.set_xscale("log")
+        # Ticks at 1, 2 and 5 of each decade, labelled plainly; no labels on the minor ticks (they overlapped).
+        ax.xaxis.set_major_locator(ticker.LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+        ax.xaxis.set_major_formatter(ticker.FuncFormatter(lambda value, _: f"{value:g}"))
+        ax.xaxis.set_minor_formatter(ticker.NullFormatter())
         ax.set_ylim(-0.05, 1.05)
         ax.set_title(scene, fontsize=10)
         ax.grid(True, which="both", alpha=0.3)
@@ -159,6 +167,35 @@ def section(results, plot_link, level, reproduce=None):
                "collision + solver ms (fastest of the repetitions), and the whole step ÷ the best ODE option "
                "(the ODE contender failing the fewest seeds, the cheaper on a tie; where it fails more than half, "
                "the cheapest).\n")
+    out.append("How to run: `scripts/run` runs the default mode (about 530 CPU-seconds: fewer seeds where a run costs "
+               "seconds, as the scene table says) and appends this section to results/report.md; `scripts/solver_seeds` "
+               "runs the full mode (50 seeds of everything) and writes it here; `scripts/solver_seeds --quick` the default "
+               "mode. Flags of `bench_solver_seeds` pass through: `--scene NAME`, `--stepper quick10|quick20|quick50|world`, "
+               "`--contender gdc:maxContacts=4` (any field of gdc::Settings by name, several as `gdc:a=1,b=2`), "
+               "`--seeds N`, `--seeds-for SCENE[:STEPPER]=N`, `--no-sleep`, `--jobs N` (worker processes: ODE's random "
+               "generator, which QuickStep's row shuffle draws from, is process-wide).\n")
+    # The overview a user chooses from: each contender's fail fraction and whole step ÷ best ODE option.
+    contenders = sorted({r["contender"] for r in rows}, key=contender_order)
+    index = {(r["scene"], r["stepper"], r["contender"]): r for r in rows}
+    out.append("Overview — per scene and stepper, each contender's **fraction of seeds failing** and, in brackets, its "
+               "**whole step on identical states ÷ the best ODE option** (named in the last column):\n")
+    out.append("| scene | stepper | " + " | ".join(contender_label(c) for c in contenders) + " | best ODE option |")
+    out.append("|---|---|" + "---|" * len(contenders) + "---|")
+    for sc in scenes:
+        for stepper in STEPPER_ORDER:
+            present = [index.get((sc["scene"], stepper, c)) for c in contenders]
+            if not any(present):
+                continue
+            cells, best = [], ""
+            for r in present:
+                if r is None:
+                    cells.append("–")
+                    continue
+                ratio = number(r["ratio_to_best_ode"])
+                cells.append(f"{fmt(number(r['fail_fraction']), 2)}" + (f" ({fmt(ratio, 2)}×)" if not math.isnan(ratio) else ""))
+                best = best or contender_label(r["best_ode"]) if r["best_ode"] else best
+            out.append(f"| {sc['scene']} | {STEPPER_LABEL[stepper]} | " + " | ".join(cells) + f" | {best} |")
+    out.append("")
     if plot_link:
         out.append(f"![stability against cost per scene]({plot_link})\n")
     by_scene = {}
