@@ -4,8 +4,8 @@
 // the same floating-point expressions, in the same order, and differs only in what it skips —
 // a box's support and Gauss-map feature in closed form instead of a search over its adjacency, a
 // small hull's depths from one loop over its vertices, a box's angular-tolerance cosine and sine
-// only where a comparison with them is close, and the contacts written straight to the
-// manifold when no reduction is needed. tests/half_space_test.cpp runs both on random poses.
+// only where a comparison with them is close. The points are ranked (and reduced) by the same
+// emitManifold. tests/half_space_test.cpp runs both on random poses.
 #include "half_space.hpp"
 
 #include "collide_general.hpp"
@@ -120,31 +120,6 @@ Feature boxFeature(const Vec3& direction, int support, ToleranceTest& tolerance)
     return {FeatureType::Vertex, support};
 }
 
-// The contacts as collideGeneral's `add` makes them (x lifted half its depth onto the plane),
-// written straight to the manifold in the world frame as emit writes them: used when the points
-// cannot outnumber the caller's maximum, so that emit would keep them all in order.
-class DirectPoints {
-public:
-    DirectPoints(Manifold& manifold, const Pose& pose, const Vec3& m) : manifold_(manifold), pose_(pose), m_(m) {}
-    void add(const Vec3& x, double depth) {
-        ContactPoint& point = manifold_.points[manifold_.pointCount++];
-        point = {pose_.apply(x + 0.5 * depth * m_), depth};
-        nonFinite_ += (point.position * 0.0).sum() + depth * 0.0;
-    }
-    bool empty() const { return manifold_.pointCount == 0; }
-    // emit's overflow check.
-    void finish() const {
-        if (!(nonFinite_ == 0))
-            throw InvalidInput("the contact overflows double precision (coordinates or offsets near 1e308)");
-    }
-
-private:
-    Manifold& manifold_;
-    const Pose& pose_;
-    const Vec3& m_;
-    double nonFinite_ = 0;
-};
-
 // The contacts gathered in A's frame as collideGeneral gathers them, then reduced and written as
 // its emit does: used when there may be more than the caller's maximum (or a cap's crossings
 // need the points found so far).
@@ -159,14 +134,15 @@ public:
             if ((point.position - 0.5 * point.depth * m_ - crossing).squaredNorm() <= tolerance * tolerance) return true;
         return false;
     }
-    void emit(const Vec3& normal, const Pose& poseA, const Settings& settings, Manifold& manifold) {
-        // Planar coordinates serve only the reduction: computed when there is something to reduce.
-        if (static_cast<int>(kept_.size()) > settings.maxContacts) {
+    void emit(const Vec3& normal, const Pose& poseA, const Settings& settings, double tolerance, const Vec3& centroid,
+              Manifold& manifold) {
+        // Planar coordinates serve only the ranking: computed where it compares distances and areas.
+        if (kept_.size() >= 3) {
             Vec3 u, v;
             planeBasis(normal, u, v);
             for (LiftedPoint& point : kept_) point.planar = Vec2(point.position.dot(u), point.position.dot(v));
         }
-        emitManifold(kept_, normal, poseA, settings, manifold);
+        emitManifold(kept_, normal, poseA, settings, tolerance, &centroid, 1, manifold);
     }
 
 private:
@@ -174,7 +150,7 @@ private:
     LiftedPoints kept_;
 };
 
-// What both paths share once the support and the feature are known.
+// What both paths (box, small hull) share once the support and the feature are known.
 struct Query {
     const Polytope& a;
     const PlaneInA& plane;
@@ -230,41 +206,25 @@ struct Query {
         }
     }
 
-    // The feature's points into the manifold: straight when they cannot outnumber the caller's
-    // maximum, gathered and reduced otherwise. A tilted face whose points all float keeps the
-    // deepest vertex.
+    // The feature's points into the manifold, ranked (and reduced) as collideGeneral's emit does.
+    // A tilted face whose points all float keeps the deepest vertex.
     template <class VertexDepth>
     void liftFeature(const Feature& feature, int deepest, const SmallVector<int, 8>* cap, VertexDepth depthOfVertex,
                      const Pose& poseA, Manifold& manifold) const {
         const Vec3 normal = -plane.m;
-        int storage[2];
-        const int* indices = nullptr;
-        const int count = featureVertices(a, feature, &indices, storage);
-        const int maxCount = std::max(1, std::min(settings.maxContacts, kMaxManifoldPoints));
-        const int mostPoints = settings.spanContactRegion ? 2 * count : count;
-        auto keepDeepestIfNone = [&](auto& points) {
-            if (points.empty()) points.add(a.vertices()[deepest], depthOfVertex(deepest));
-        };
-        if (!cap && mostPoints <= maxCount) {
-            double depths[kMaxManifoldPoints];  // count ≤ maxCount ≤ kMaxManifoldPoints
-            for (int i = 0; i < count; ++i) depths[i] = depthOfVertex(indices[i]);
-            DirectPoints points(manifold, poseA, plane.m);
-            liftLoop(indices, depths, count, points);
-            keepDeepestIfNone(points);
-            manifold.normal = poseA.rotation * normal;
-            points.finish();
-            return;
-        }
         GatheredPoints points(plane.m);
         if (cap) {
             liftCap(*cap, depthOfVertex, points);
         } else {
+            int storage[2];
+            const int* indices = nullptr;
+            const int count = featureVertices(a, feature, &indices, storage);
             SmallVector<double, 32> depths;
             for (int i = 0; i < count; ++i) depths.push_back(depthOfVertex(indices[i]));
             liftLoop(indices, depths.data(), count, points);
         }
-        keepDeepestIfNone(points);
-        points.emit(normal, poseA, settings, manifold);
+        if (points.empty()) points.add(a.vertices()[deepest], depthOfVertex(deepest));
+        points.emit(normal, poseA, settings, tolerance, a.centroid(), manifold);
     }
 };
 

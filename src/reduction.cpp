@@ -1,6 +1,7 @@
 #include "reduction.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace gdc::detail {
@@ -8,10 +9,12 @@ namespace {
 
 double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-// Convex hull (counter-clockwise, monotone chain) of a few planar points, in place; returns its size.
-int convexHull(SmallVector<Vec2, 17>& points, std::array<Vec2, 36>& hull) {
-    const int n = static_cast<int>(points.size());
-    std::sort(points.data(), points.data() + n,
+constexpr int kMaxHull = 2 * kMaxManifoldPoints + 4;
+
+// Convex hull (counter-clockwise, monotone chain) of a few planar points, in place; returns its
+// size (collinear points dropped; a single point or a segment gives 1 or 2).
+int convexHull(Vec2* points, int n, Vec2* hull) {
+    std::sort(points, points + n,
               [](const Vec2& p, const Vec2& q) { return p.x() < q.x() || (p.x() == q.x() && p.y() < q.y()); });
     int k = 0;
     for (int i = 0; i < n; ++i) {
@@ -27,85 +30,165 @@ int convexHull(SmallVector<Vec2, 17>& points, std::array<Vec2, 36>& hull) {
 
 // Area the convex polygon `hull` (CCW) gains when `p` joins it: the triangles p forms with the
 // edges it sees from outside.
-double areaGain(const std::array<Vec2, 36>& hull, int size, const Vec2& p) {
+double areaGain(const Vec2* hull, int size, const Vec2& p) {
     double gain = 0;
     for (int i = 0; i < size; ++i) {
         const Vec2& a = hull[i];
         const Vec2& b = hull[i + 1 == size ? 0 : i + 1];
-        double twiceArea = cross2(b - a, p - a);
+        const double twiceArea = cross2(b - a, p - a);
         if (twiceArea < 0) gain -= 0.5 * twiceArea;
     }
     return gain;
 }
 
+double hullArea(const Vec2* hull, int size) {
+    double twice = 0;
+    for (int i = 0; i < size; ++i) twice += cross2(hull[i], hull[i + 1 == size ? 0 : i + 1]);
+    return 0.5 * twice;
+}
+
+// Whether `p` lies inside the convex polygon `hull` (CCW), within `slack` (a length).
+bool contains(const Vec2* hull, int size, const Vec2& p, double slack) {
+    if (size < 3) return false;
+    for (int i = 0; i < size; ++i) {
+        const Vec2& a = hull[i];
+        const Vec2 edge = hull[i + 1 == size ? 0 : i + 1] - a;
+        if (cross2(edge, p - a) < -slack * edge.norm()) return false;
+    }
+    return true;
+}
+
 }  // namespace
 
-int reduceContacts(const LiftedPoints& points, int maxCount, int* chosen) {
+const Vec3& identityDirection() {
+    static const Vec3 direction(0.7548776662466927, 0.5698402909980532, 0.4301597090019468);
+    return direction;
+}
+
+int rankContacts(const LiftedPoints& points, const RankingRule& rule, int* chosen) {
     const int count = static_cast<int>(points.size());
-    if (count <= maxCount) {
-        for (int i = 0; i < count; ++i) chosen[i] = i;
-        return count;
-    }
-    if (maxCount <= 0) return 0;
-    // Per point: whether it is kept, and its largest squared distance to the points kept so far
-    // (updated as each is taken, instead of rescanning every kept point for every candidate).
+    const int wanted = std::min(count, rule.maxCount);
+    if (wanted <= 0) return 0;
+    const double keep = 1 - rule.hysteresis;
+    // Per point: whether it is kept, its identity (its position along the fixed direction), and
+    // the value it would add in the current slot.
     struct Candidate {
         bool taken;
-        double farthestKept;
+        double identity;
+        double value;
+        double nearestKept;  // squared distance to the nearest kept point (spreads collinear sets)
     };
     SmallVector<Candidate, 16> candidates;
-    for (int i = 0; i < count; ++i) candidates.push_back({false, 0.0});
-    auto take = [&](int index, int slot) { chosen[slot] = index, candidates[index].taken = true; };
-
-    int deepest = 0;
-    for (int i = 1; i < count; ++i)
-        if (points[i].depth > points[deepest].depth) deepest = i;
-    take(deepest, 0);
-    if (maxCount == 1) return 1;
-
-    int farthest = -1;
-    double farthestDistance = -1;
-    for (int i = 0; i < count; ++i)
-        if (!candidates[i].taken) {
-            double d = (points[i].planar - points[deepest].planar).squaredNorm();
-            if (d > farthestDistance) farthestDistance = d, farthest = i;
+    for (int i = 0; i < count; ++i) candidates.push_back({false, points[i].position.dot(rule.identity), 0.0, INFINITY});
+    // Among the free candidates whose value reaches `threshold`, the one of largest identity.
+    auto pickAtLeast = [&](double threshold) {
+        int best = -1;
+        for (int i = 0; i < count; ++i) {
+            const Candidate& c = candidates[i];
+            if (!c.taken && c.value >= threshold && (best < 0 || c.identity > candidates[best].identity)) best = i;
         }
-    take(farthest, 1);
-
-    auto keepDistancesTo = [&](int index) {
-        for (int i = 0; i < count; ++i)
-            candidates[i].farthestKept =
-                std::max(candidates[i].farthestKept, (points[i].planar - points[index].planar).squaredNorm());
+        return best;
     };
-    if (maxCount > 2) keepDistancesTo(chosen[0]), keepDistancesTo(chosen[1]);
+    auto take = [&](int index, int slot) {
+        chosen[slot] = index;
+        candidates[index].taken = true;
+        if (slot + 1 < wanted)
+            for (int i = 0; i < count; ++i)
+                candidates[i].nearestKept =
+                    std::min(candidates[i].nearestKept, (points[i].planar - points[index].planar).squaredNorm());
+    };
+    auto takeLast = [&](int slot) {  // one candidate left: no choice to make
+        for (int i = 0; i < count; ++i)
+            if (!candidates[i].taken) return take(i, slot);
+    };
 
-    std::array<Vec2, 36> hull;
-    for (int slot = 2; slot < maxCount; ++slot) {
-        // Two kept points make at most a 2-point hull, whose gain is the triangle formula below:
-        // the hull is built only from the third slot on.
+    // The deepest point; depths within the band of it are equal (a resting face's corners).
+    double deepest = -INFINITY;
+    for (int i = 0; i < count; ++i) deepest = std::max(deepest, candidates[i].value = points[i].depth);
+    take(pickAtLeast(deepest - rule.hysteresis * std::abs(deepest) - rule.tolerance), 0);
+    if (wanted == 1) return 1;
+    if (count == 2) return takeLast(1), 2;
+
+    // The farthest from it: the longest segment through the first point (at least half the
+    // polygon's diameter).
+    double farthest = 0;
+    for (int i = 0; i < count; ++i)
+        if (!candidates[i].taken) farthest = std::max(farthest, candidates[i].value = candidates[i].nearestKept);
+    take(pickAtLeast(keep * keep * farthest), 1);
+    if (wanted == 2) return 2;
+
+    // Then, slot by slot, the largest area added to the kept points' hull (for the third point
+    // the triangle on the segment); collinear sets gain no area and spread along their line.
+    const double areaTolerance = rule.tolerance * std::sqrt(farthest);
+    std::array<Vec2, kMaxHull> hull, scratch;
+    for (int slot = 2; slot < wanted; ++slot) {
+        if (slot + 1 == count) return takeLast(slot), wanted;
         int hullSize = 2;
         if (slot >= 3) {
-            SmallVector<Vec2, 17> kept;
-            for (int s = 0; s < slot; ++s) kept.push_back(points[chosen[s]].planar);
-            hullSize = convexHull(kept, hull);
+            for (int s = 0; s < slot; ++s) scratch[s] = points[chosen[s]].planar;
+            hullSize = convexHull(scratch.data(), slot, hull.data());
         }
-        int best = -1;
-        double bestGain = -1, bestDistance = -1;
+        const Vec2& p0 = points[chosen[0]].planar;
+        const Vec2 segment = points[chosen[1]].planar - p0;
+        double bestGain = 0;
+        for (int i = 0; i < count; ++i) {
+            Candidate& c = candidates[i];
+            if (c.taken) continue;
+            c.value = hullSize >= 3 ? areaGain(hull.data(), hullSize, points[i].planar)
+                                    : 0.5 * std::abs(cross2(segment, points[i].planar - p0));
+            bestGain = std::max(bestGain, c.value);
+        }
+        if (!(bestGain > areaTolerance)) {
+            double spread = 0;
+            for (int i = 0; i < count; ++i)
+                if (!candidates[i].taken) spread = std::max(spread, candidates[i].value = candidates[i].nearestKept);
+            take(pickAtLeast(keep * keep * spread), slot);
+        } else {
+            take(pickAtLeast(keep * bestGain), slot);
+        }
+    }
+    if (wanted == count || wanted < 3 || rule.centroidCount == 0) return wanted;
+
+    // The centroid rule: a body whose centroid projects inside the whole contact polygon rests on
+    // it; if the kept points leave the centroid outside, that body would tip over an edge the
+    // polygon does not have. Then one kept point (never the first) is swapped for the point that
+    // brings every such centroid back inside, the swap of largest area.
+    for (int s = 0; s < wanted; ++s) scratch[s] = points[chosen[s]].planar;
+    int keptSize = convexHull(scratch.data(), wanted, hull.data());
+    bool restore = false;
+    for (int c = 0; c < rule.centroidCount; ++c)
+        restore |= !contains(hull.data(), keptSize, rule.centroids[c], rule.tolerance);
+    if (!restore) return wanted;
+    std::array<Vec2, kMaxHull> whole;
+    SmallVector<Vec2, 16> all;
+    for (int i = 0; i < count; ++i) all.push_back(points[i].planar);
+    SmallVector<Vec2, 16> allSorted = all;
+    const int wholeSize = convexHull(allSorted.data(), count, whole.data());
+    bool required[4] = {false, false, false, false};
+    bool any = false;
+    for (int c = 0; c < std::min(rule.centroidCount, 4); ++c)
+        any |= required[c] = contains(whole.data(), wholeSize, rule.centroids[c], -rule.tolerance) &&
+                             !contains(hull.data(), keptSize, rule.centroids[c], rule.tolerance);
+    if (!any) return wanted;
+    // Every centroid inside the whole polygon must be inside the swapped set.
+    for (int c = 0; c < std::min(rule.centroidCount, 4); ++c)
+        required[c] = contains(whole.data(), wholeSize, rule.centroids[c], -rule.tolerance);
+    int bestSlot = -1, bestPoint = -1;
+    double bestArea = -1;
+    for (int slot = 1; slot < wanted; ++slot)
         for (int i = 0; i < count; ++i) {
             if (candidates[i].taken) continue;
-            // Both orientations of a 2-point hull count, so a segment's gain is its triangle.
-            double gain = hullSize >= 3 ? areaGain(hull, hullSize, points[i].planar)
-                                        : 0.5 * std::abs(cross2(points[chosen[1]].planar - points[chosen[0]].planar,
-                                                                points[i].planar - points[chosen[0]].planar));
-            // Collinear sets (an edge contact) gain no area: spread along the line instead.
-            const double distance = candidates[i].farthestKept;
-            if (gain > bestGain || (gain == bestGain && distance > bestDistance))
-                bestGain = gain, bestDistance = distance, best = i;
+            for (int s = 0; s < wanted; ++s) scratch[s] = s == slot ? all[i] : points[chosen[s]].planar;
+            const int size = convexHull(scratch.data(), wanted, hull.data());
+            bool holds = true;
+            for (int c = 0; c < std::min(rule.centroidCount, 4) && holds; ++c)
+                holds = !required[c] || contains(hull.data(), size, rule.centroids[c], rule.tolerance);
+            if (!holds) continue;
+            const double area = hullArea(hull.data(), size);
+            if (area > bestArea) bestArea = area, bestSlot = slot, bestPoint = i;
         }
-        take(best, slot);
-        if (slot + 1 < maxCount) keepDistancesTo(best);
-    }
-    return maxCount;
+    if (bestSlot >= 0) chosen[bestSlot] = bestPoint;
+    return wanted;
 }
 
 }  // namespace gdc::detail

@@ -266,10 +266,11 @@ const Manifold& queryThrough(const CacheSource& source, dGeomID o1, dGeomID o2, 
     return manifold;
 }
 
-// The core's contacts as ODE's: deepest first, at most maxContacts, written in place at stride
-// `skip`. `flip`: the core's A is o2 (its normal then already points from o2 into o1).
-int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int maxContacts, dGeomID o1,
-                  dGeomID o2, dContactGeom* contact, int skip) {
+// The core's contacts as ODE's: at most maxContacts, written in place at stride `skip`, in the
+// order that makes dWorldQuickStep meet them as `order` says. `flip`: the core's A is o2 (its
+// normal then already points from o2 into o1).
+int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int maxContacts, ContactOrder order,
+                  dGeomID o1, dGeomID o2, dContactGeom* contact, int skip) {
     // The core's normal points from A towards B; ODE's from o2 into o1.
     Vec3 normal = flip ? manifold.normal : Vec3(-manifold.normal);
     const double length = normal.norm();
@@ -283,38 +284,28 @@ int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int ma
     // point (depth < 0, only with Settings::margin > 0) would hold the bodies apart by its gap.
     // Such points are not passed on; a rounding-level negative depth is reported as touching.
     const double touchingTolerance = 1e-9 * sizeOfPair;
-    // Deepest first, as ODE's own colliders list them. dWorldQuickStep sweeps the contact rows in
-    // the order given; the core's order walks the contact polygon the same way round every step,
-    // and under QuickStep that fixed order roughly doubled a 10-stack's drift (samples/ode_stack).
-    // Kept points are inserted by depth as they are read (stable: equal depths keep the core's
-    // order); at most 16, so an insertion sort of (depth, index) pairs is the cheapest. Slot 0
-    // holds NaN, which no comparison passes, so the inner loop needs no bound check (a kept depth
-    // is never NaN).
-    struct Ranked {
-        double depth;
-        int index;
-    };
-    std::array<Ranked, kMaxManifoldPoints + 1> ranked;  // deepest first from ranked[1]
-    ranked[0] = Ranked{NAN, -1};
-    int kept = 0;
+    // The core's points come in the order of importance (the deepest first; every prefix the best
+    // of its length), already reduced to maxContacts. ODE's dJointAttach puts each new contact
+    // joint at the head of its bodies' joint lists, and the island walk follows those lists, so
+    // the solver meets a pair's joints in the reverse of the order they were created in from this
+    // array: for DeepestLast the array is the order of importance, for DeepestFirst its reverse.
+    int kept[kMaxManifoldPoints];
+    int keptCount = 0;
     for (int i = 0; i < manifold.pointCount; ++i) {
         const ContactPoint& point = manifold.points[i];
-        const double depth = point.depth;
-        if (!(depth >= -touchingTolerance && isFinite(point.position))) continue;
-        Ranked* slot = &ranked[++kept];  // a pointer walk: indices made g++ unroll into index arithmetic
-        for (; depth > slot[-1].depth; --slot) *slot = slot[-1];
-        *slot = Ranked{depth, i};
+        if (point.depth >= -touchingTolerance && isFinite(point.position)) kept[keptCount++] = i;
     }
-    const int written = std::min(kept, maxContacts);
+    const int written = std::min(keptCount, maxContacts);
+    const bool reverse = order == ContactOrder::DeepestFirst;
     const dReal odeNormal[4] = {normal.x(), normal.y(), normal.z(), 0};
     char* outBytes = reinterpret_cast<char*>(contact);
-    for (int k = 1; k <= written; ++k, outBytes += skip) {
-        const Vec3& position = manifold.points[ranked[k].index].position;
-        const dReal odePosition[4] = {position.x(), position.y(), position.z(), 0};
+    for (int k = 0; k < written; ++k, outBytes += skip) {
+        const ContactPoint& point = manifold.points[kept[reverse ? written - 1 - k : k]];
+        const dReal odePosition[4] = {point.position.x(), point.position.y(), point.position.z(), 0};
         dContactGeom* out = reinterpret_cast<dContactGeom*>(outBytes);
         std::memcpy(out->pos, odePosition, sizeof odePosition);
         std::memcpy(out->normal, odeNormal, sizeof odeNormal);
-        out->depth = std::max(ranked[k].depth, 0.0);
+        out->depth = std::max(point.depth, 0.0);
         out->g1 = o1;
         out->g2 = o2;
         out->side1 = -1;
@@ -352,7 +343,8 @@ int collidePolytopeWithPlane(dGeomID o1, int class1, dGeomID o2, int class2, int
             });
     });
     if (manifold.empty()) return 0;
-    return writeContacts(manifold, planeFirst, polytope.radius(), maxContacts, o1, o2, contact, skip);
+    return writeContacts(manifold, planeFirst, polytope.radius(), maxContacts, settings.contactOrder, o1, o2, contact,
+                         skip);
 }
 
 int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip,
@@ -391,8 +383,8 @@ int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int
             });
     });
     if (manifold.empty()) return 0;
-    return writeContacts(manifold, swapped, polytope1.radius() + polytope2.radius(), maxContacts, o1, o2,
-                         contact, skip);
+    return writeContacts(manifold, swapped, polytope1.radius() + polytope2.radius(), maxContacts,
+                         settings.contactOrder, o1, o2, contact, skip);
 }
 
 // The installed settings (`settings` null) or the caller's; the pair's cache `given`, or else one
