@@ -12,19 +12,18 @@ struct Settings;
 /// naming the first field out of bounds, its value and its bounds. NaN is out of every bound.
 GDCONTACT_API void validate(const Settings& settings);
 
-/// The order in which the solver meets one pair's contacts (Settings::contactOrder). ODE's
-/// dJointAttach puts each new contact joint at the head of its bodies' joint lists and the island
-/// walk follows those lists, so dWorldQuickStep meets a pair's contacts in the REVERSE of the order
-/// a near callback creates them from dCollide's array; the ODE adapter writes its array so that the
-/// solver meets them in the order named here. The core's own array (gdc::collide) is always in the
-/// order of importance: the deepest point first, then each point that adds the most support.
+/// The order in which the solver meets one pair's contacts (Settings::contactOrder), by depth.
+/// ODE's dJointAttach puts each new contact joint at the head of its bodies' joint lists and the
+/// island walk follows those lists, so dWorldQuickStep meets a pair's contacts in the REVERSE of
+/// the order a near callback creates them from dCollide's array; the ODE adapter writes its array
+/// so that the solver meets them in the order named here. (The core's own array, gdc::collide,
+/// is always in the order of importance: the deepest point first, then each point that adds the
+/// most support, so that every prefix is the best set of its length.)
 enum class ContactOrder {
-    /// The solver meets the least important point first and the deepest last (the adapter writes
-    /// the order of importance, which ODE reverses): the deepest point, solved last in each sweep,
-    /// has the last word.
+    /// The solver meets the shallowest point first and the deepest last (the adapter's array is
+    /// deepest first, as ODE's own colliders and earlier gdcontact wrote it).
     DeepestLast,
-    /// The solver meets the deepest point first, then the others by importance (the adapter writes
-    /// the reverse of the order of importance).
+    /// The solver meets the deepest point first and the shallowest last.
     DeepestFirst,
 };
 

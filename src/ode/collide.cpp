@@ -285,27 +285,44 @@ int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int ma
     // Such points are not passed on; a rounding-level negative depth is reported as touching.
     const double touchingTolerance = 1e-9 * sizeOfPair;
     // The core's points come in the order of importance (the deepest first; every prefix the best
-    // of its length), already reduced to maxContacts. ODE's dJointAttach puts each new contact
-    // joint at the head of its bodies' joint lists, and the island walk follows those lists, so
-    // the solver meets a pair's joints in the reverse of the order they were created in from this
-    // array: for DeepestLast the array is the order of importance, for DeepestFirst its reverse.
-    int kept[kMaxManifoldPoints];
-    int keptCount = 0;
+    // of its length), already reduced to maxContacts: the set is the best of its size. The ORDER
+    // is by depth, for dWorldQuickStep, which solves rows in the order they arrive: ODE's
+    // dJointAttach puts each new contact joint at the head of its bodies' joint lists and the
+    // island walk follows those lists, so the solver meets a pair's joints in the reverse of the
+    // array's order. DeepestLast writes the array deepest first (the solver meets the shallowest
+    // first), DeepestFirst the reverse. Ordered by depth, the order follows the tilt of a resting
+    // face and corrects it; a fixed order (the importance order) pushed 20-box stacks over in
+    // every seed (docs/algorithm.md). Equal depths keep the importance order. Kept points are
+    // inserted by depth as they are read; at most 16, so an insertion sort of (depth, index)
+    // pairs is the cheapest. Slot 0 holds NaN, which no comparison passes, so the inner loop needs
+    // no bound check (a kept depth is never NaN).
+    struct Ranked {
+        double depth;
+        int index;
+    };
+    std::array<Ranked, kMaxManifoldPoints + 1> ranked;  // deepest first from ranked[1]
+    ranked[0] = Ranked{NAN, -1};
+    int kept = 0;
     for (int i = 0; i < manifold.pointCount; ++i) {
         const ContactPoint& point = manifold.points[i];
-        if (point.depth >= -touchingTolerance && isFinite(point.position)) kept[keptCount++] = i;
+        const double depth = point.depth;
+        if (!(depth >= -touchingTolerance && isFinite(point.position))) continue;
+        Ranked* slot = &ranked[++kept];  // a pointer walk: indices made g++ unroll into index arithmetic
+        for (; depth > slot[-1].depth; --slot) *slot = slot[-1];
+        *slot = Ranked{depth, i};
     }
-    const int written = std::min(keptCount, maxContacts);
+    const int written = std::min(kept, maxContacts);
     const bool reverse = order == ContactOrder::DeepestFirst;
     const dReal odeNormal[4] = {normal.x(), normal.y(), normal.z(), 0};
     char* outBytes = reinterpret_cast<char*>(contact);
-    for (int k = 0; k < written; ++k, outBytes += skip) {
-        const ContactPoint& point = manifold.points[kept[reverse ? written - 1 - k : k]];
-        const dReal odePosition[4] = {point.position.x(), point.position.y(), point.position.z(), 0};
+    for (int k = 1; k <= written; ++k, outBytes += skip) {
+        const Ranked& entry = ranked[reverse ? written + 1 - k : k];
+        const Vec3& position = manifold.points[entry.index].position;
+        const dReal odePosition[4] = {position.x(), position.y(), position.z(), 0};
         dContactGeom* out = reinterpret_cast<dContactGeom*>(outBytes);
         std::memcpy(out->pos, odePosition, sizeof odePosition);
         std::memcpy(out->normal, odeNormal, sizeof odeNormal);
-        out->depth = std::max(point.depth, 0.0);
+        out->depth = std::max(entry.depth, 0.0);
         out->g1 = o1;
         out->g2 = o2;
         out->side1 = -1;
