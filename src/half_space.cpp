@@ -11,6 +11,7 @@
 #include "collide_general.hpp"
 #include "feature_intersection.hpp"
 #include "gauss_map.hpp"
+#include "reduction.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -120,6 +121,49 @@ Feature boxFeature(const Vec3& direction, int support, ToleranceTest& tolerance)
     return {FeatureType::Vertex, support};
 }
 
+// The contacts as collideGeneral's `add` makes them (x lifted half its depth onto the plane), kept
+// in fixed arrays when they cannot outnumber the caller's maximum, then ranked and written to the
+// manifold in the world frame as emitManifold writes them (no reduction: the centroid rule only
+// acts where points are dropped).
+class DirectPoints {
+public:
+    DirectPoints(const Vec3& m) : m_(m) {}
+    void add(const Vec3& x, double depth) {
+        local_[count_] = x + 0.5 * depth * m_;
+        depth_[count_++] = depth;
+    }
+    bool empty() const { return count_ == 0; }
+    void emit(const Vec3& normal, const Pose& poseA, const Settings& settings, double tolerance, Manifold& manifold) {
+        RankPoint ranked[kMaxManifoldPoints];
+        const RankingRule rule{std::max(1, std::min(settings.maxContacts, kMaxManifoldPoints)),
+                               settings.reductionHysteresis, tolerance,
+                               poseA.rotation.transpose() * identityDirection()};
+        Vec3 u = Vec3::Zero(), v = Vec3::Zero();
+        if (count_ >= 3) planeBasis(normal, u, v);
+        for (int i = 0; i < count_; ++i)
+            ranked[i] = {count_ >= 3 ? Vec2(local_[i].dot(u), local_[i].dot(v)) : Vec2::Zero(), depth_[i],
+                         local_[i].dot(rule.identity)};
+        int chosen[kMaxManifoldPoints];
+        const int count = rankContacts(ranked, count_, rule, chosen);
+        manifold.normal = poseA.rotation * normal;
+        manifold.pointCount = count;
+        double nonFinite = 0;  // emitManifold's overflow check
+        for (int i = 0; i < count; ++i) {
+            ContactPoint& point = manifold.points[i];
+            point = {poseA.apply(local_[chosen[i]]), depth_[chosen[i]]};
+            nonFinite += (point.position * 0.0).sum() + point.depth * 0.0;
+        }
+        if (!(nonFinite == 0))
+            throw InvalidInput("the contact overflows double precision (coordinates or offsets near 1e308)");
+    }
+
+private:
+    const Vec3& m_;
+    Vec3 local_[kMaxManifoldPoints];
+    double depth_[kMaxManifoldPoints];
+    int count_ = 0;
+};
+
 // The contacts gathered in A's frame as collideGeneral gathers them, then reduced and written as
 // its emit does: used when there may be more than the caller's maximum (or a cap's crossings
 // need the points found so far).
@@ -206,24 +250,39 @@ struct Query {
         }
     }
 
-    // The feature's points into the manifold, ranked (and reduced) as collideGeneral's emit does.
-    // A tilted face whose points all float keeps the deepest vertex.
+    // The feature's points into the manifold, ranked (and reduced) as collideGeneral's emit does:
+    // in fixed arrays when they cannot outnumber the caller's maximum, gathered otherwise. A
+    // tilted face whose points all float keeps the deepest vertex.
     template <class VertexDepth>
     void liftFeature(const Feature& feature, int deepest, const SmallVector<int, 8>* cap, VertexDepth depthOfVertex,
                      const Pose& poseA, Manifold& manifold) const {
         const Vec3 normal = -plane.m;
+        int storage[2];
+        const int* indices = nullptr;
+        const int count = featureVertices(a, feature, &indices, storage);
+        const int maxCount = std::max(1, std::min(settings.maxContacts, kMaxManifoldPoints));
+        const int mostPoints = settings.spanContactRegion ? 2 * count : count;
+        auto keepDeepestIfNone = [&](auto& points) {
+            if (points.empty()) points.add(a.vertices()[deepest], depthOfVertex(deepest));
+        };
+        if (!cap && mostPoints <= maxCount) {
+            double depths[kMaxManifoldPoints];  // count ≤ maxCount ≤ kMaxManifoldPoints
+            for (int i = 0; i < count; ++i) depths[i] = depthOfVertex(indices[i]);
+            DirectPoints points(plane.m);
+            liftLoop(indices, depths, count, points);
+            keepDeepestIfNone(points);
+            points.emit(normal, poseA, settings, tolerance, manifold);
+            return;
+        }
         GatheredPoints points(plane.m);
         if (cap) {
             liftCap(*cap, depthOfVertex, points);
         } else {
-            int storage[2];
-            const int* indices = nullptr;
-            const int count = featureVertices(a, feature, &indices, storage);
             SmallVector<double, 32> depths;
             for (int i = 0; i < count; ++i) depths.push_back(depthOfVertex(indices[i]));
             liftLoop(indices, depths.data(), count, points);
         }
-        if (points.empty()) points.add(a.vertices()[deepest], depthOfVertex(deepest));
+        keepDeepestIfNone(points);
         points.emit(normal, poseA, settings, tolerance, a.centroid(), manifold);
     }
 };

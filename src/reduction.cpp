@@ -65,83 +65,81 @@ const Vec3& identityDirection() {
     return direction;
 }
 
-int rankContacts(const LiftedPoints& points, const RankingRule& rule, int* chosen) {
-    const int count = static_cast<int>(points.size());
+int rankContacts(const RankPoint* points, int count, const RankingRule& rule, int* chosen) {
     const int wanted = std::min(count, rule.maxCount);
     if (wanted <= 0) return 0;
     const double keep = 1 - rule.hysteresis;
-    // Per point: whether it is kept, its identity (its position along the fixed direction), and
-    // the value it would add in the current slot.
-    struct Candidate {
-        bool taken;
-        double identity;
-        double value;
-        double nearestKept;  // squared distance to the nearest kept point (spreads collinear sets)
-    };
-    SmallVector<Candidate, 16> candidates;
-    for (int i = 0; i < count; ++i) candidates.push_back({false, points[i].position.dot(rule.identity), 0.0, INFINITY});
-    // Among the free candidates whose value reaches `threshold`, the one of largest identity.
+    // Which points are kept, and the value each free point would add in the current slot.
+    SmallVector<char, 16> taken;
+    SmallVector<double, 16> value;
+    for (int i = 0; i < count; ++i) taken.push_back(0), value.push_back(0.0);
+    // Among the free points whose value reaches `threshold`, the one of largest identity.
     auto pickAtLeast = [&](double threshold) {
         int best = -1;
-        for (int i = 0; i < count; ++i) {
-            const Candidate& c = candidates[i];
-            if (!c.taken && c.value >= threshold && (best < 0 || c.identity > candidates[best].identity)) best = i;
-        }
+        for (int i = 0; i < count; ++i)
+            if (!taken[i] && value[i] >= threshold && (best < 0 || points[i].identity > points[best].identity)) best = i;
         return best;
     };
-    auto take = [&](int index, int slot) {
-        chosen[slot] = index;
-        candidates[index].taken = true;
-        if (slot + 1 < wanted)
-            for (int i = 0; i < count; ++i)
-                candidates[i].nearestKept =
-                    std::min(candidates[i].nearestKept, (points[i].planar - points[index].planar).squaredNorm());
-    };
-    auto takeLast = [&](int slot) {  // one candidate left: no choice to make
+    auto take = [&](int index, int slot) { chosen[slot] = index, taken[index] = 1; };
+    auto takeLast = [&](int slot) {  // one point left: no choice to make
         for (int i = 0; i < count; ++i)
-            if (!candidates[i].taken) return take(i, slot);
+            if (!taken[i]) return take(i, slot);
     };
 
     // The deepest point; depths within the band of it are equal (a resting face's corners).
     double deepest = -INFINITY;
-    for (int i = 0; i < count; ++i) deepest = std::max(deepest, candidates[i].value = points[i].depth);
+    for (int i = 0; i < count; ++i) deepest = std::max(deepest, value[i] = points[i].depth);
     take(pickAtLeast(deepest - rule.hysteresis * std::abs(deepest) - rule.tolerance), 0);
     if (wanted == 1) return 1;
     if (count == 2) return takeLast(1), 2;
 
     // The farthest from it: the longest segment through the first point (at least half the
     // polygon's diameter).
+    const Vec2 p0 = points[chosen[0]].planar;
     double farthest = 0;
     for (int i = 0; i < count; ++i)
-        if (!candidates[i].taken) farthest = std::max(farthest, candidates[i].value = candidates[i].nearestKept);
+        if (!taken[i]) farthest = std::max(farthest, value[i] = (points[i].planar - p0).squaredNorm());
     take(pickAtLeast(keep * keep * farthest), 1);
     if (wanted == 2) return 2;
 
-    // Then, slot by slot, the largest area added to the kept points' hull (for the third point
-    // the triangle on the segment); collinear sets gain no area and spread along their line.
+    // Then, slot by slot, the largest area added to the kept points' hull: for the third point
+    // the triangle on the segment, for the fourth the triangle's gain (the default budget ends
+    // there), beyond it the hull rebuilt. Collinear sets gain no area and spread along their line.
     const double areaTolerance = rule.tolerance * std::sqrt(farthest);
     std::array<Vec2, kMaxHull> hull, scratch;
     for (int slot = 2; slot < wanted; ++slot) {
         if (slot + 1 == count) return takeLast(slot), wanted;
-        int hullSize = 2;
-        if (slot >= 3) {
-            for (int s = 0; s < slot; ++s) scratch[s] = points[chosen[s]].planar;
-            hullSize = convexHull(scratch.data(), slot, hull.data());
-        }
-        const Vec2& p0 = points[chosen[0]].planar;
-        const Vec2 segment = points[chosen[1]].planar - p0;
         double bestGain = 0;
-        for (int i = 0; i < count; ++i) {
-            Candidate& c = candidates[i];
-            if (c.taken) continue;
-            c.value = hullSize >= 3 ? areaGain(hull.data(), hullSize, points[i].planar)
-                                    : 0.5 * std::abs(cross2(segment, points[i].planar - p0));
-            bestGain = std::max(bestGain, c.value);
+        if (slot == 2) {
+            const Vec2 segment = points[chosen[1]].planar - p0;
+            for (int i = 0; i < count; ++i)
+                if (!taken[i])
+                    bestGain = std::max(bestGain, value[i] = 0.5 * std::abs(cross2(segment, points[i].planar - p0)));
+        } else {
+            int hullSize;
+            if (slot == 3) {
+                const Vec2& a = points[chosen[0]].planar;
+                Vec2 b = points[chosen[1]].planar, c = points[chosen[2]].planar;
+                if (cross2(b - a, c - a) < 0) std::swap(b, c);
+                hull[0] = a, hull[1] = b, hull[2] = c;
+                hullSize = 3;
+            } else {
+                for (int s = 0; s < slot; ++s) scratch[s] = points[chosen[s]].planar;
+                hullSize = convexHull(scratch.data(), slot, hull.data());
+            }
+            for (int i = 0; i < count; ++i)
+                if (!taken[i]) bestGain = std::max(bestGain, value[i] = areaGain(hull.data(), hullSize, points[i].planar));
         }
         if (!(bestGain > areaTolerance)) {
+            // Spread: the free point farthest from its nearest kept point.
             double spread = 0;
-            for (int i = 0; i < count; ++i)
-                if (!candidates[i].taken) spread = std::max(spread, candidates[i].value = candidates[i].nearestKept);
+            for (int i = 0; i < count; ++i) {
+                if (taken[i]) continue;
+                double nearest = INFINITY;
+                for (int s = 0; s < slot; ++s)
+                    nearest = std::min(nearest, (points[i].planar - points[chosen[s]].planar).squaredNorm());
+                spread = std::max(spread, value[i] = nearest);
+            }
             take(pickAtLeast(keep * keep * spread), slot);
         } else {
             take(pickAtLeast(keep * bestGain), slot);
@@ -153,35 +151,33 @@ int rankContacts(const LiftedPoints& points, const RankingRule& rule, int* chose
     // it; if the kept points leave the centroid outside, that body would tip over an edge the
     // polygon does not have. Then one kept point (never the first) is swapped for the point that
     // brings every such centroid back inside, the swap of largest area.
+    const int centroids = std::min(rule.centroidCount, 4);
     for (int s = 0; s < wanted; ++s) scratch[s] = points[chosen[s]].planar;
-    int keptSize = convexHull(scratch.data(), wanted, hull.data());
+    const int keptSize = convexHull(scratch.data(), wanted, hull.data());
     bool restore = false;
-    for (int c = 0; c < rule.centroidCount; ++c)
-        restore |= !contains(hull.data(), keptSize, rule.centroids[c], rule.tolerance);
+    for (int c = 0; c < centroids; ++c) restore |= !contains(hull.data(), keptSize, rule.centroids[c], rule.tolerance);
     if (!restore) return wanted;
     std::array<Vec2, kMaxHull> whole;
     SmallVector<Vec2, 16> all;
     for (int i = 0; i < count; ++i) all.push_back(points[i].planar);
-    SmallVector<Vec2, 16> allSorted = all;
-    const int wholeSize = convexHull(allSorted.data(), count, whole.data());
+    const int wholeSize = convexHull(all.data(), count, whole.data());
+    // Every centroid inside the whole polygon (by more than rounding) must be inside the kept set.
     bool required[4] = {false, false, false, false};
     bool any = false;
-    for (int c = 0; c < std::min(rule.centroidCount, 4); ++c)
-        any |= required[c] = contains(whole.data(), wholeSize, rule.centroids[c], -rule.tolerance) &&
-                             !contains(hull.data(), keptSize, rule.centroids[c], rule.tolerance);
-    if (!any) return wanted;
-    // Every centroid inside the whole polygon must be inside the swapped set.
-    for (int c = 0; c < std::min(rule.centroidCount, 4); ++c)
+    for (int c = 0; c < centroids; ++c) {
         required[c] = contains(whole.data(), wholeSize, rule.centroids[c], -rule.tolerance);
+        any |= required[c] && !contains(hull.data(), keptSize, rule.centroids[c], rule.tolerance);
+    }
+    if (!any) return wanted;
     int bestSlot = -1, bestPoint = -1;
     double bestArea = -1;
     for (int slot = 1; slot < wanted; ++slot)
         for (int i = 0; i < count; ++i) {
-            if (candidates[i].taken) continue;
-            for (int s = 0; s < wanted; ++s) scratch[s] = s == slot ? all[i] : points[chosen[s]].planar;
+            if (taken[i]) continue;
+            for (int s = 0; s < wanted; ++s) scratch[s] = s == slot ? points[i].planar : points[chosen[s]].planar;
             const int size = convexHull(scratch.data(), wanted, hull.data());
             bool holds = true;
-            for (int c = 0; c < std::min(rule.centroidCount, 4) && holds; ++c)
+            for (int c = 0; c < centroids && holds; ++c)
                 holds = !required[c] || contains(hull.data(), size, rule.centroids[c], rule.tolerance);
             if (!holds) continue;
             const double area = hullArea(hull.data(), size);
@@ -189,6 +185,14 @@ int rankContacts(const LiftedPoints& points, const RankingRule& rule, int* chose
         }
     if (bestSlot >= 0) chosen[bestSlot] = bestPoint;
     return wanted;
+}
+
+int rankContacts(const LiftedPoints& points, const RankingRule& rule, int* chosen) {
+    const int count = static_cast<int>(points.size());
+    SmallVector<RankPoint, 16> ranked;
+    for (int i = 0; i < count; ++i)
+        ranked.push_back({points[i].planar, points[i].depth, points[i].position.dot(rule.identity)});
+    return rankContacts(ranked.data(), count, rule, chosen);
 }
 
 }  // namespace gdc::detail

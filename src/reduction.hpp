@@ -26,9 +26,19 @@ struct RankingRule {
 /// boxes with commensurate sizes (2:1 bricks, cubes) never share a position along it.
 const Vec3& identityDirection();
 
+/// What the ranking reads of one point.
+struct RankPoint {
+    Vec2 planar;      ///< coordinates in the contact plane (read when there are 3 or more points)
+    double depth;
+    double identity;  ///< its position along rule.identity (the tie-break)
+};
+
 /// Chooses at most rule.maxCount of `points` in the order of importance (indices into `points`,
-/// written to `chosen`, which holds kMaxManifoldPoints). Every point's `planar` must be set when
-/// there are 3 or more points. Returns how many were chosen (min(points, maxCount)).
+/// written to `chosen`, which holds kMaxManifoldPoints). Returns how many were chosen
+/// (min(count, maxCount)).
+int rankContacts(const RankPoint* points, int count, const RankingRule& rule, int* chosen);
+
+/// The same for lifted points (their `planar` set when there are 3 or more).
 int rankContacts(const LiftedPoints& points, const RankingRule& rule, int* chosen);
 
 }  // namespace gdc::detail

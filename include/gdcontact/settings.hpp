@@ -21,9 +21,11 @@ GDCONTACT_API void validate(const Settings& settings);
 /// most support, so that every prefix is the best set of its length.)
 enum class ContactOrder {
     /// The solver meets the shallowest point first and the deepest last (the adapter's array is
-    /// deepest first, as ODE's own colliders and earlier gdcontact wrote it).
+    /// deepest first, as earlier gdcontact wrote it). The least drift in tall stacks; resting
+    /// piles fall asleep a little later than with ODE's dBox colliders.
     DeepestLast,
-    /// The solver meets the deepest point first and the shallowest last.
+    /// The solver meets the deepest point first and the shallowest last (default): stacks stand in
+    /// every seed measured, resting piles fall asleep sooner than with ODE's dBox colliders.
     DeepestFirst,
 };
 
@@ -125,10 +127,12 @@ struct Settings {
     // ---- the order of its points and the hysteresis of its choice. ----
 
     /// The order in which dWorldQuickStep (projected Gauss–Seidel, which solves rows in the order
-    /// they arrive) meets one pair's contacts through the ODE adapter; see ContactOrder. Chosen from
-    /// the seeds benchmark in docs/algorithm.md. The core's array is always in the order of importance.
+    /// they arrive) meets one pair's contacts through the ODE adapter: by depth, see ContactOrder.
+    /// It trades drift in tall stacks (DeepestLast: less) against the time resting bodies take to
+    /// fall asleep (DeepestFirst: sooner); measured over 200 seeds in docs/algorithm.md. The
+    /// core's array is always in the order of importance.
     /// Bounds: a ContactOrder value (checked: a value cast from an integer may be neither).
-    ContactOrder contactOrder = ContactOrder::DeepestLast;
+    ContactOrder contactOrder = ContactOrder::DeepestFirst;
 
     /// Reduction and order — hysteresis without state (relative, unitless): candidates whose depth
     /// (for the first point) or whose gain (distance, then added area, for the others) is within

@@ -7,9 +7,9 @@
 // Usage: ode_contact_order_seeds SCENE CONTENDER SEEDS [ITERATIONS]
 //   SCENE: heavy (100 kg on two 1 kg boxes) | heavy1000 | stack10 | stack20 | pile (time to sleep)
 //   CONTENDER: dbox (ODE's own box colliders) | gdc:ORDER:BUDGET:HYSTERESIS, ORDER one of
-//     last (Settings::ContactOrder::DeepestLast), first (DeepestFirst), sorted (the adapter's
-//     former order: deepest first in the array, which the solver meets reversed)
-//   e.g. ode_contact_order_seeds stack20 gdc:last:4:0.01 50 20
+//     last (Settings::ContactOrder::DeepestLast), first (DeepestFirst); BUDGET maxContacts,
+//     HYSTERESIS reductionHysteresis
+//   e.g. ode_contact_order_seeds stack20 gdc:first:4:0.01 200 20
 // Prints one line: the scene, the contender, the failed seeds, drift percentiles (m), contacts per
 // step, and for `pile` the bodies asleep at 5 s and the median time until all sleep.
 #include <gdcontact/ode.hpp>
@@ -27,7 +27,7 @@
 
 namespace {
 
-enum class Order { Last, First, Sorted, Ascending };
+enum class Order { Last, First };
 
 struct Contender {
     bool ode = false;
@@ -49,10 +49,7 @@ Contender parseContender(const std::string& text) {
         std::exit(2);
     }
     const std::string o = order;
-    contender.order = o == "first"       ? Order::First
-                      : o == "sorted"    ? Order::Sorted
-                      : o == "ascending" ? Order::Ascending
-                                         : Order::Last;
+    contender.order = o == "first" ? Order::First : Order::Last;
     contender.settings.maxContacts = budget;
     contender.settings.reductionHysteresis = hysteresis;
     contender.settings.contactOrder =
@@ -75,10 +72,6 @@ void nearCallback(void* data, dGeomID o1, dGeomID o2) {
     if (b1 && b2 && dAreConnectedExcluding(b1, b2, dJointTypeContact)) return;
     dContactGeom geoms[16];
     const int n = dCollide(o1, o2, 16, geoms, sizeof(dContactGeom));
-    if (w.contender->order == Order::Sorted)  // the former adapter: deepest first in the array
-        std::stable_sort(geoms, geoms + n, [](const dContactGeom& a, const dContactGeom& b) { return a.depth > b.depth; });
-    if (w.contender->order == Order::Ascending)  // the solver meets the deepest first, then by depth
-        std::stable_sort(geoms, geoms + n, [](const dContactGeom& a, const dContactGeom& b) { return a.depth < b.depth; });
     for (int i = 0; i < n; ++i) {
         dContact contact{};
         contact.surface.mode = dContactApprox1;
