@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 namespace gdc::detail {
 namespace {
@@ -41,6 +42,29 @@ double areaGain(const Vec2* hull, int size, const Vec2& p) {
     return gain;
 }
 
+// Inserts `p`, a point outside the convex polygon `hull` (CCW, size ≥ 3), into it in place: the
+// vertices between the edges p sees are dropped and p takes their place. Returns the new size.
+int insertIntoHull(Vec2* hull, int size, const Vec2& p) {
+    bool sees[kMaxHull];
+    int seen = 0;
+    for (int i = 0; i < size; ++i) {
+        const Vec2& a = hull[i];
+        sees[i] = cross2(hull[i + 1 == size ? 0 : i + 1] - a, p - a) < 0;  // edge i runs from vertex i
+        seen += sees[i];
+    }
+    if (seen == 0 || seen == size) return size;  // inside (or a degenerate hull): nothing to insert
+    Vec2 out[kMaxHull];
+    int count = 0;
+    for (int i = 0; i < size; ++i) {
+        const bool before = sees[i == 0 ? size - 1 : i - 1], after = sees[i];
+        if (before && after) continue;  // between two visible edges: now inside
+        out[count++] = hull[i];
+        if (!before && after) out[count++] = p;  // the visible chain starts here
+    }
+    std::copy(out, out + count, hull);
+    return count;
+}
+
 double hullArea(const Vec2* hull, int size) {
     double twice = 0;
     for (int i = 0; i < size; ++i) twice += cross2(hull[i], hull[i + 1 == size ? 0 : i + 1]);
@@ -70,14 +94,21 @@ int rankContacts(const RankPoint* points, int count, const RankingRule& rule, in
     if (wanted <= 0) return 0;
     const double keep = 1 - rule.hysteresis;
     // Which points are kept, and the value each free point would add in the current slot.
-    SmallVector<char, 16> taken;
-    SmallVector<double, 16> value;
-    for (int i = 0; i < count; ++i) taken.push_back(0), value.push_back(0.0);
+    char takenStorage[kMaxManifoldPoints];
+    double valueStorage[kMaxManifoldPoints];
+    std::vector<char> takenHeap;
+    std::vector<double> valueHeap;
+    if (count > kMaxManifoldPoints) takenHeap.resize(count), valueHeap.resize(count);
+    char* taken = count > kMaxManifoldPoints ? takenHeap.data() : takenStorage;
+    double* value = count > kMaxManifoldPoints ? valueHeap.data() : valueStorage;
+    std::fill(taken, taken + count, 0);
     // Among the free points whose value reaches `threshold`, the one of largest identity.
     auto pickAtLeast = [&](double threshold) {
         int best = -1;
+        double bestIdentity = -INFINITY;
         for (int i = 0; i < count; ++i)
-            if (!taken[i] && value[i] >= threshold && (best < 0 || points[i].identity > points[best].identity)) best = i;
+            if (!taken[i] && value[i] >= threshold && (best < 0 || points[i].identity > bestIdentity))
+                best = i, bestIdentity = points[i].identity;
         return best;
     };
     auto take = [&](int index, int slot) { chosen[slot] = index, taken[index] = 1; };
@@ -102,31 +133,21 @@ int rankContacts(const RankPoint* points, int count, const RankingRule& rule, in
     take(pickAtLeast(keep * keep * farthest), 1);
     if (wanted == 2) return 2;
 
-    // Then, slot by slot, the largest area added to the kept points' hull: for the third point
-    // the triangle on the segment, for the fourth the triangle's gain (the default budget ends
-    // there), beyond it the hull rebuilt. Collinear sets gain no area and spread along their line.
+    // Then, slot by slot, the largest area added to the kept points' hull (for the third point the
+    // triangle on the segment), the hull grown by each point taken. Collinear sets gain no area and
+    // spread along their line.
     const double areaTolerance = rule.tolerance * std::sqrt(farthest);
-    std::array<Vec2, kMaxHull> hull, scratch;
+    std::array<Vec2, kMaxHull> hull;
+    int hullSize = 0;  // 0 until the kept points span a triangle
     for (int slot = 2; slot < wanted; ++slot) {
-        if (slot + 1 == count) return takeLast(slot), wanted;
+        if (slot + 1 == count) return takeLast(slot), wanted;  // every point kept: no centroid rule
         double bestGain = 0;
-        if (slot == 2) {
+        if (hullSize < 3) {
             const Vec2 segment = points[chosen[1]].planar - p0;
             for (int i = 0; i < count; ++i)
                 if (!taken[i])
                     bestGain = std::max(bestGain, value[i] = 0.5 * std::abs(cross2(segment, points[i].planar - p0)));
         } else {
-            int hullSize;
-            if (slot == 3) {
-                const Vec2& a = points[chosen[0]].planar;
-                Vec2 b = points[chosen[1]].planar, c = points[chosen[2]].planar;
-                if (cross2(b - a, c - a) < 0) std::swap(b, c);
-                hull[0] = a, hull[1] = b, hull[2] = c;
-                hullSize = 3;
-            } else {
-                for (int s = 0; s < slot; ++s) scratch[s] = points[chosen[s]].planar;
-                hullSize = convexHull(scratch.data(), slot, hull.data());
-            }
             for (int i = 0; i < count; ++i)
                 if (!taken[i]) bestGain = std::max(bestGain, value[i] = areaGain(hull.data(), hullSize, points[i].planar));
         }
@@ -141,26 +162,45 @@ int rankContacts(const RankPoint* points, int count, const RankingRule& rule, in
                 spread = std::max(spread, value[i] = nearest);
             }
             take(pickAtLeast(keep * keep * spread), slot);
-        } else {
-            take(pickAtLeast(keep * bestGain), slot);
+            continue;  // still collinear: no hull yet
+        }
+        const int index = pickAtLeast(keep * bestGain);
+        take(index, slot);
+        const Vec2& q = points[index].planar;
+        if (hullSize >= 3) {
+            hullSize = insertIntoHull(hull.data(), hullSize, q);
+        } else {  // the first point off the line: the triangle, counter-clockwise
+            Vec2 b = points[chosen[1]].planar, c = q;
+            if (cross2(b - p0, c - p0) < 0) std::swap(b, c);
+            hull[0] = p0, hull[1] = b, hull[2] = c;
+            hullSize = 3;
         }
     }
-    if (wanted == count || wanted < 3 || rule.centroidCount == 0) return wanted;
+    // (A polygon of more points than the hull buffers hold — only caps of many faces make one —
+    // keeps the greedy set.)
+    if (wanted == count || wanted < 3 || rule.centroidCount == 0 || count > kMaxHull - 2) return wanted;
 
     // The centroid rule: a body whose centroid projects inside the whole contact polygon rests on
     // it; if the kept points leave the centroid outside, that body would tip over an edge the
     // polygon does not have. Then one kept point (never the first) is swapped for the point that
     // brings every such centroid back inside, the swap of largest area.
     const int centroids = std::min(rule.centroidCount, 4);
-    for (int s = 0; s < wanted; ++s) scratch[s] = points[chosen[s]].planar;
-    const int keptSize = convexHull(scratch.data(), wanted, hull.data());
+    const int keptSize = hullSize;
+    std::array<Vec2, kMaxHull> scratch;
     bool restore = false;
     for (int c = 0; c < centroids; ++c) restore |= !contains(hull.data(), keptSize, rule.centroids[c], rule.tolerance);
     if (!restore) return wanted;
+    // The whole polygon: the kept hull grown by every free point (no sort).
     std::array<Vec2, kMaxHull> whole;
-    SmallVector<Vec2, 16> all;
-    for (int i = 0; i < count; ++i) all.push_back(points[i].planar);
-    const int wholeSize = convexHull(all.data(), count, whole.data());
+    int wholeSize = keptSize;
+    std::copy(hull.begin(), hull.begin() + keptSize, whole.begin());
+    if (wholeSize >= 3) {
+        for (int i = 0; i < count; ++i)
+            if (!taken[i]) wholeSize = insertIntoHull(whole.data(), wholeSize, points[i].planar);
+    } else {
+        for (int i = 0; i < count; ++i) scratch[i] = points[i].planar;
+        wholeSize = convexHull(scratch.data(), count, whole.data());
+    }
     // Every centroid inside the whole polygon (by more than rounding) must be inside the kept set.
     bool required[4] = {false, false, false, false};
     bool any = false;
@@ -189,10 +229,12 @@ int rankContacts(const RankPoint* points, int count, const RankingRule& rule, in
 
 int rankContacts(const LiftedPoints& points, const RankingRule& rule, int* chosen) {
     const int count = static_cast<int>(points.size());
-    SmallVector<RankPoint, 16> ranked;
-    for (int i = 0; i < count; ++i)
-        ranked.push_back({points[i].planar, points[i].depth, points[i].position.dot(rule.identity)});
-    return rankContacts(ranked.data(), count, rule, chosen);
+    RankPoint storage[kMaxManifoldPoints];
+    std::vector<RankPoint> heap;
+    if (count > kMaxManifoldPoints) heap.resize(count);
+    RankPoint* ranked = count > kMaxManifoldPoints ? heap.data() : storage;
+    for (int i = 0; i < count; ++i) ranked[i] = {points[i].planar, points[i].depth, points[i].position.dot(rule.identity)};
+    return rankContacts(ranked, count, rule, chosen);
 }
 
 }  // namespace gdc::detail
