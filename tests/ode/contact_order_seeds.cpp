@@ -7,11 +7,14 @@
 // Usage: ode_contact_order_seeds SCENE CONTENDER SEEDS [ITERATIONS]
 //   SCENE: heavy (100 kg on two 1 kg boxes) | heavy1000 | stack10 | stack20 | pile (time to sleep)
 //   CONTENDER: dbox (ODE's own box colliders) | gdc:ORDER:BUDGET:HYSTERESIS, ORDER one of
-//     last (Settings::ContactOrder::DeepestLast), first (DeepestFirst); BUDGET maxContacts,
-//     HYSTERESIS reductionHysteresis
+//     last (Settings::ContactOrder::DeepestLast), first (DeepestFirst), or, to measure what an
+//     order by depth is worth, importance-last / importance-first: the core's own array (the order
+//     of importance, gdc::collide) made into joints as it is / reversed, so that the solver meets
+//     it reversed / as it is; BUDGET maxContacts, HYSTERESIS reductionHysteresis
 //   e.g. ode_contact_order_seeds stack20 gdc:first:4:0.01 200 20
 // Prints one line: the scene, the contender, the failed seeds, drift percentiles (m), contacts per
 // step, and for `pile` the bodies asleep at 5 s and the median time until all sleep.
+#include <gdcontact/gdcontact.hpp>
 #include <gdcontact/ode.hpp>
 
 #include <ode/ode.h>
@@ -27,7 +30,7 @@
 
 namespace {
 
-enum class Order { Last, First };
+enum class Order { Last, First, ImportanceLast, ImportanceFirst };
 
 struct Contender {
     bool ode = false;
@@ -44,12 +47,15 @@ Contender parseContender(const std::string& text) {
     char order[16] = {};
     int budget = 4;
     double hysteresis = 0.01;
-    if (std::sscanf(text.c_str(), "gdc:%15[a-z]:%d:%lf", order, &budget, &hysteresis) < 1) {
+    if (std::sscanf(text.c_str(), "gdc:%15[a-z-]:%d:%lf", order, &budget, &hysteresis) < 1) {
         std::fprintf(stderr, "bad contender %s\n", text.c_str());
         std::exit(2);
     }
     const std::string o = order;
-    contender.order = o == "first" ? Order::First : Order::Last;
+    contender.order = o == "first"              ? Order::First
+                      : o == "importance-last"  ? Order::ImportanceLast
+                      : o == "importance-first" ? Order::ImportanceFirst
+                                                : Order::Last;
     contender.settings.maxContacts = budget;
     contender.settings.reductionHysteresis = hysteresis;
     contender.settings.contactOrder =
@@ -66,12 +72,44 @@ struct World {
     long contactCount = 0;
 };
 
+// The core's contacts for a box–box or box–plane pair in its own order (the order of importance),
+// in ODE's convention (normal from o2 into o1, depth ≥ 0).
+int coreContacts(dGeomID o1, dGeomID o2, const gdc::Settings& settings, dContactGeom* out) {
+    const bool planeFirst = dGeomGetClass(o1) == dPlaneClass;
+    const bool planeSecond = dGeomGetClass(o2) == dPlaneClass;
+    dGeomID body = planeFirst ? o2 : o1;
+    const auto a = gdc::ode::polytopeOf(body);
+    gdc::Manifold m;
+    if (planeFirst || planeSecond) {
+        dVector4 plane;
+        dGeomPlaneGetParams(planeFirst ? o1 : o2, plane);
+        m = gdc::collide(*a, gdc::ode::poseOf(body), gdc::HalfSpace{gdc::Vec3(plane[0], plane[1], plane[2]), plane[3]},
+                         settings);
+    } else {
+        m = gdc::collide(*a, gdc::ode::poseOf(o1), *gdc::ode::polytopeOf(o2), gdc::ode::poseOf(o2), settings);
+    }
+    const gdc::Vec3 normal = planeFirst ? m.normal : gdc::Vec3(-m.normal);  // the core's A is `body`
+    int n = 0;
+    for (int i = 0; i < m.pointCount; ++i) {
+        if (m.points[i].depth < 0) continue;
+        dContactGeom& g = out[n++];
+        g = dContactGeom{};
+        for (int k = 0; k < 3; ++k) g.pos[k] = m.points[i].position[k], g.normal[k] = normal[k];
+        g.depth = m.points[i].depth;
+        g.g1 = o1, g.g2 = o2, g.side1 = g.side2 = -1;
+    }
+    return n;
+}
+
 void nearCallback(void* data, dGeomID o1, dGeomID o2) {
     World& w = *static_cast<World*>(data);
     dBodyID b1 = dGeomGetBody(o1), b2 = dGeomGetBody(o2);
     if (b1 && b2 && dAreConnectedExcluding(b1, b2, dJointTypeContact)) return;
     dContactGeom geoms[16];
-    const int n = dCollide(o1, o2, 16, geoms, sizeof(dContactGeom));
+    const bool importance =
+        w.contender->order == Order::ImportanceLast || w.contender->order == Order::ImportanceFirst;
+    const int n = importance ? coreContacts(o1, o2, w.contender->settings, geoms) : dCollide(o1, o2, 16, geoms, sizeof(dContactGeom));
+    if (w.contender->order == Order::ImportanceFirst) std::reverse(geoms, geoms + n);
     for (int i = 0; i < n; ++i) {
         dContact contact{};
         contact.surface.mode = dContactApprox1;
