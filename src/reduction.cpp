@@ -231,8 +231,25 @@ int rankContacts(const RankPoint* points, int count, const RankingRule& rule, in
     const int centroids = std::min(rule.centroidCount, 4);
     const int keptSize = hullSize;
     std::array<Vec2, kMaxHull> scratch;
+    // A centroid needs the rule only if it is outside the kept hull and a free point lies beyond a
+    // kept edge it is outside of (else that edge's line separates it from every point: it is
+    // outside the whole polygon too) — two cheap tests before the whole polygon is built.
     bool restore = false;
-    for (int c = 0; c < centroids; ++c) restore |= !contains(hull.data(), keptSize, rule.centroids[c], rule.tolerance);
+    for (int c = 0; c < centroids && !restore; ++c) {
+        const Vec2& centroid = rule.centroids[c];
+        if (keptSize < 3) {
+            restore = true;
+            break;
+        }
+        for (int e = 0; e < keptSize && !restore; ++e) {
+            const Vec2& a = hull[e];
+            const Vec2 edge = hull[e + 1 == keptSize ? 0 : e + 1] - a;
+            if (!(cross2(edge, centroid - a) < -rule.tolerance * edge.norm())) continue;  // inside this edge
+            for (int i = 0; i < count && !restore; ++i)
+                restore = !taken[i] && cross2(edge, points[i].planar - a) < 0;
+            if (!restore) break;  // separated from every point by this edge's line
+        }
+    }
     if (!restore) return wanted;
     // The whole polygon: the kept hull grown by every free point (no sort).
     std::array<Vec2, kMaxHull> whole;
