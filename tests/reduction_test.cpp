@@ -247,6 +247,13 @@ TEST_CASE("The swapped call gives the mirrored set, in the same order") {
             REQUIRE(ba.normal.isApprox(-ab.normal, 1e-12));
             REQUIRE(samePointSets(ab, ba, 1e-9));
             CHECK(ab.pointCount <= Settings{}.maxContacts);
+            // The first point is the deepest of the whole polygon (every point kept: budget 16),
+            // within the hysteresis band.
+            Settings all;
+            all.maxContacts = kMaxManifoldPoints;
+            const double deepest = collide(lower, poseA, *top, poseB, all).maxDepth();
+            CHECK(ab.points[0].depth >= deepest - Settings{}.reductionHysteresis * std::abs(deepest) - 1e-12);
+            CHECK(ab.points[0].depth <= deepest);
             ++total;
             reduced += ab.pointCount == Settings{}.maxContacts ? 1 : 0;
             sameOrders += sameOrder(ab, ba, 1e-9) ? 1 : 0;
