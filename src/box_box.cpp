@@ -473,7 +473,8 @@ Manifold collideBoxBox(const Polytope& a, const Pose& poseA, const Polytope& b, 
         !exitsBy(a.boxHalfExtents(), b.boxHalfExtents(), bInA, normal, deepest + 2 * tolerance,
                  2 * settings.rayCastTolerance * size))
         return general();
-    emitManifold(kept, normal, poseA, settings, manifold);
+    const Vec3 centroids[2] = {pair.centreA, pair.centreB};
+    emitManifold(kept, normal, poseA, settings, tolerance, centroids, 2, manifold);
     return manifold;
 }
 

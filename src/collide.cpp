@@ -288,17 +288,30 @@ void edgeEdgeNormal(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& 
 }
 
 void emitManifold(const LiftedPoints& points, const Vec3& normal, const Pose& commonToWorld, const Settings& settings,
-                  Manifold& manifold) {
+                  double tolerance, const Vec3* centroids, int centroidCount, Manifold& manifold) {
     int chosen[kMaxManifoldPoints];
     const int maxCount = std::max(1, std::min(settings.maxContacts, kMaxManifoldPoints));
     const int total = static_cast<int>(points.size());
-    const int count = total <= maxCount ? total : reduceContacts(points, maxCount, chosen);
+    // The bodies' centroids on the contact plane, for the centroid rule: needed only where points
+    // are dropped.
+    Vec2 planarCentroids[2];
+    RankingRule rule{maxCount, settings.reductionHysteresis, tolerance,
+                     commonToWorld.rotation.transpose() * identityDirection()};
+    if (total > maxCount && maxCount >= 3 && centroidCount > 0) {
+        Vec3 u, v;
+        planeBasis(normal, u, v);
+        for (int c = 0; c < std::min(centroidCount, 2); ++c)
+            planarCentroids[c] = Vec2(centroids[c].dot(u), centroids[c].dot(v));
+        rule.centroids = planarCentroids;
+        rule.centroidCount = std::min(centroidCount, 2);
+    }
+    const int count = rankContacts(points, rule, chosen);
     manifold.normal = commonToWorld.rotation * normal;
     manifold.pointCount = count;
     // x·0 is 0 for every finite x and NaN otherwise: one test for all the coordinates written.
     double nonFinite = 0;
     for (int i = 0; i < count; ++i) {
-        const LiftedPoint& point = points[total <= maxCount ? i : chosen[i]];
+        const LiftedPoint& point = points[chosen[i]];
         manifold.points[i] = {commonToWorld.apply(point.position), point.depth};
         nonFinite += (manifold.points[i].position * 0.0).sum() + point.depth * 0.0;
     }
@@ -405,7 +418,8 @@ Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b,
         if (gap < -settings.margin - tolerance) return Manifold{};
         kept.push_back({middle, gap, Vec2::Zero()});
     }
-    emitManifold(kept, normal, poseA, settings, manifold);
+    const Vec3 centroids[2] = {pair.centreA, pair.centreB};
+    emitManifold(kept, normal, poseA, settings, tolerance, centroids, 2, manifold);
     return manifold;
 }
 
@@ -499,13 +513,13 @@ Manifold collideGeneral(const Polytope& a, const Pose& poseA, const HalfSpace& b
         double depth = offset - m.dot(x);
         kept.push_back({x + 0.5 * depth * m, depth, Vec2::Zero()});
     }
-    // Planar coordinates serve only the reduction: computed when there is something to reduce.
-    if (static_cast<int>(kept.size()) > settings.maxContacts) {
+    // Planar coordinates serve only the ranking: computed where it compares distances and areas.
+    if (kept.size() >= 3) {
         Vec3 u, v;
         planeBasis(normal, u, v);
         for (LiftedPoint& point : kept) point.planar = Vec2(point.position.dot(u), point.position.dot(v));
     }
-    emitManifold(kept, normal, poseA, settings, manifold);
+    emitManifold(kept, normal, poseA, settings, tolerance, &a.centroid(), 1, manifold);
     return manifold;
 }
 

@@ -35,9 +35,11 @@ bool separatedByEarlyOut(const MinkowskiDifference& pair, const Vec3& centreOffs
 void edgeEdgeNormal(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, const MinkowskiDifference& pair,
                     Vec3& normal, double& normalOverlap);
 
-/// Writes the lifted points (A's frame) to the manifold in world coordinates, reduced to
-/// settings.maxContacts; throws InvalidInput when finite input overflowed into a non-finite contact.
+/// Writes the lifted points (A's frame) to the manifold in world coordinates, ranked by importance
+/// and reduced to settings.maxContacts (reduction.hpp: rankContacts, with the bodies' `centroids`
+/// in A's frame for the centroid rule; `tolerance` the pair's rounding length); throws InvalidInput
+/// when finite input overflowed into a non-finite contact.
 void emitManifold(const LiftedPoints& points, const Vec3& normal, const Pose& commonToWorld, const Settings& settings,
-                  Manifold& manifold);
+                  double tolerance, const Vec3* centroids, int centroidCount, Manifold& manifold);
 
 }  // namespace gdc::detail

@@ -4,13 +4,14 @@
 // the same floating-point expressions, in the same order, and differs only in what it skips —
 // a box's support and Gauss-map feature in closed form instead of a search over its adjacency, a
 // small hull's depths from one loop over its vertices, a box's angular-tolerance cosine and sine
-// only where a comparison with them is close, and the contacts written straight to the
-// manifold when no reduction is needed. tests/half_space_test.cpp runs both on random poses.
+// only where a comparison with them is close. The points are ranked (and reduced) by the same
+// emitManifold. tests/half_space_test.cpp runs both on random poses.
 #include "half_space.hpp"
 
 #include "collide_general.hpp"
 #include "feature_intersection.hpp"
 #include "gauss_map.hpp"
+#include "reduction.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -120,29 +121,47 @@ Feature boxFeature(const Vec3& direction, int support, ToleranceTest& tolerance)
     return {FeatureType::Vertex, support};
 }
 
-// The contacts as collideGeneral's `add` makes them (x lifted half its depth onto the plane),
-// written straight to the manifold in the world frame as emit writes them: used when the points
-// cannot outnumber the caller's maximum, so that emit would keep them all in order.
+// The contacts as collideGeneral's `add` makes them (x lifted half its depth onto the plane), kept
+// in fixed arrays when they cannot outnumber the caller's maximum, then ranked and written to the
+// manifold in the world frame as emitManifold writes them (no reduction: the centroid rule only
+// acts where points are dropped).
 class DirectPoints {
 public:
-    DirectPoints(Manifold& manifold, const Pose& pose, const Vec3& m) : manifold_(manifold), pose_(pose), m_(m) {}
+    DirectPoints(const Vec3& m) : m_(m) {}
     void add(const Vec3& x, double depth) {
-        ContactPoint& point = manifold_.points[manifold_.pointCount++];
-        point = {pose_.apply(x + 0.5 * depth * m_), depth};
-        nonFinite_ += (point.position * 0.0).sum() + depth * 0.0;
+        local_[count_] = x + 0.5 * depth * m_;
+        depth_[count_++] = depth;
     }
-    bool empty() const { return manifold_.pointCount == 0; }
-    // emit's overflow check.
-    void finish() const {
-        if (!(nonFinite_ == 0))
+    bool empty() const { return count_ == 0; }
+    void emit(const Vec3& normal, const Pose& poseA, const Settings& settings, double tolerance, Manifold& manifold) {
+        RankPoint ranked[kMaxManifoldPoints];
+        const RankingRule rule{std::max(1, std::min(settings.maxContacts, kMaxManifoldPoints)),
+                               settings.reductionHysteresis, tolerance,
+                               poseA.rotation.transpose() * identityDirection()};
+        Vec3 u = Vec3::Zero(), v = Vec3::Zero();
+        if (count_ >= 3) planeBasis(normal, u, v);
+        for (int i = 0; i < count_; ++i)
+            ranked[i] = {count_ >= 3 ? Vec2(local_[i].dot(u), local_[i].dot(v)) : Vec2::Zero(), depth_[i],
+                         local_[i].dot(rule.identity)};
+        int chosen[kMaxManifoldPoints];
+        const int count = rankContacts(ranked, count_, rule, chosen);
+        manifold.normal = poseA.rotation * normal;
+        manifold.pointCount = count;
+        double nonFinite = 0;  // emitManifold's overflow check
+        for (int i = 0; i < count; ++i) {
+            ContactPoint& point = manifold.points[i];
+            point = {poseA.apply(local_[chosen[i]]), depth_[chosen[i]]};
+            nonFinite += (point.position * 0.0).sum() + point.depth * 0.0;
+        }
+        if (!(nonFinite == 0))
             throw InvalidInput("the contact overflows double precision (coordinates or offsets near 1e308)");
     }
 
 private:
-    Manifold& manifold_;
-    const Pose& pose_;
     const Vec3& m_;
-    double nonFinite_ = 0;
+    Vec3 local_[kMaxManifoldPoints];
+    double depth_[kMaxManifoldPoints];
+    int count_ = 0;
 };
 
 // The contacts gathered in A's frame as collideGeneral gathers them, then reduced and written as
@@ -159,14 +178,15 @@ public:
             if ((point.position - 0.5 * point.depth * m_ - crossing).squaredNorm() <= tolerance * tolerance) return true;
         return false;
     }
-    void emit(const Vec3& normal, const Pose& poseA, const Settings& settings, Manifold& manifold) {
-        // Planar coordinates serve only the reduction: computed when there is something to reduce.
-        if (static_cast<int>(kept_.size()) > settings.maxContacts) {
+    void emit(const Vec3& normal, const Pose& poseA, const Settings& settings, double tolerance, const Vec3& centroid,
+              Manifold& manifold) {
+        // Planar coordinates serve only the ranking: computed where it compares distances and areas.
+        if (kept_.size() >= 3) {
             Vec3 u, v;
             planeBasis(normal, u, v);
             for (LiftedPoint& point : kept_) point.planar = Vec2(point.position.dot(u), point.position.dot(v));
         }
-        emitManifold(kept_, normal, poseA, settings, manifold);
+        emitManifold(kept_, normal, poseA, settings, tolerance, &centroid, 1, manifold);
     }
 
 private:
@@ -174,7 +194,7 @@ private:
     LiftedPoints kept_;
 };
 
-// What both paths share once the support and the feature are known.
+// What both paths (box, small hull) share once the support and the feature are known.
 struct Query {
     const Polytope& a;
     const PlaneInA& plane;
@@ -230,9 +250,9 @@ struct Query {
         }
     }
 
-    // The feature's points into the manifold: straight when they cannot outnumber the caller's
-    // maximum, gathered and reduced otherwise. A tilted face whose points all float keeps the
-    // deepest vertex.
+    // The feature's points into the manifold, ranked (and reduced) as collideGeneral's emit does:
+    // in fixed arrays when they cannot outnumber the caller's maximum, gathered otherwise. A
+    // tilted face whose points all float keeps the deepest vertex.
     template <class VertexDepth>
     void liftFeature(const Feature& feature, int deepest, const SmallVector<int, 8>* cap, VertexDepth depthOfVertex,
                      const Pose& poseA, Manifold& manifold) const {
@@ -248,11 +268,10 @@ struct Query {
         if (!cap && mostPoints <= maxCount) {
             double depths[kMaxManifoldPoints];  // count ≤ maxCount ≤ kMaxManifoldPoints
             for (int i = 0; i < count; ++i) depths[i] = depthOfVertex(indices[i]);
-            DirectPoints points(manifold, poseA, plane.m);
+            DirectPoints points(plane.m);
             liftLoop(indices, depths, count, points);
             keepDeepestIfNone(points);
-            manifold.normal = poseA.rotation * normal;
-            points.finish();
+            points.emit(normal, poseA, settings, tolerance, manifold);
             return;
         }
         GatheredPoints points(plane.m);
@@ -264,7 +283,7 @@ struct Query {
             liftLoop(indices, depths.data(), count, points);
         }
         keepDeepestIfNone(points);
-        points.emit(normal, poseA, settings, manifold);
+        points.emit(normal, poseA, settings, tolerance, a.centroid(), manifold);
     }
 };
 

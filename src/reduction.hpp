@@ -1,15 +1,44 @@
-// Reduction of a contact polygon to the caller's maximum count without losing its support:
-// keep the deepest point (it carries the penetration), then greedily the points that span the
-// largest area (they carry the torque that keeps a resting body flat). Deterministic: ties go to
-// the lowest index.
+// The contact set a pair hands the solver: at most the caller's budget of points, ranked by
+// importance so that every prefix is itself a good set — the deepest point first (it carries the
+// penetration), then the point farthest from it, then each point that adds the most area to the
+// points kept so far (they carry the torque that keeps a resting body flat). Candidates within a
+// relative band of the best count as equal and go to a fixed identity (hysteresis without state),
+// and where the bodies' centroids project inside the whole polygon but outside the kept points,
+// a point is swapped in that restores them. docs/algorithm.md, "The contact set the solver gets".
 #pragma once
 
 #include "feature_intersection.hpp"
 
 namespace gdc::detail {
 
-/// Chooses at most `maxCount` of `points` (by index into `points`, written to `chosen`).
-/// Returns how many were chosen.
-int reduceContacts(const LiftedPoints& points, int maxCount, int* chosen);
+/// What the ranking needs besides the points.
+struct RankingRule {
+    int maxCount;        ///< the budget (≥ 1)
+    double hysteresis;   ///< Settings::reductionHysteresis: the relative band of equal candidates
+    double tolerance;    ///< a length: the pair's rounding scale (1e-9 × its size)
+    Vec3 identity;       ///< the fixed generic world direction in the points' frame (kIdentityDirection)
+    const Vec2* centroids = nullptr;  ///< the bodies' centroids projected onto the contact plane
+    int centroidCount = 0;            ///< (planar coordinates, as the points' `planar`)
+};
+
+/// The fixed generic world direction that gives each contact point its identity for ties: the
+/// powers 1/ρ, 1/ρ², 1/ρ³ of the plastic number are independent over the rationals, so corners of
+/// boxes with commensurate sizes (2:1 bricks, cubes) never share a position along it.
+const Vec3& identityDirection();
+
+/// What the ranking reads of one point.
+struct RankPoint {
+    Vec2 planar;      ///< coordinates in the contact plane (read when there are 3 or more points)
+    double depth;
+    double identity;  ///< its position along rule.identity (the tie-break)
+};
+
+/// Chooses at most rule.maxCount of `points` in the order of importance (indices into `points`,
+/// written to `chosen`, which holds kMaxManifoldPoints). Returns how many were chosen
+/// (min(count, maxCount)).
+int rankContacts(const RankPoint* points, int count, const RankingRule& rule, int* chosen);
+
+/// The same for lifted points (their `planar` set when there are 3 or more).
+int rankContacts(const LiftedPoints& points, const RankingRule& rule, int* chosen);
 
 }  // namespace gdc::detail

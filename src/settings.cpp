@@ -32,6 +32,10 @@ void validate(const Settings& settings) {
     requireWithin("normalMethod", method, static_cast<int>(NormalMethod::GrowthDistance),
                   static_cast<int>(NormalMethod::SeparatingAxis), " (a NormalMethod value)");
     requireWithin("manifoldReuseDistance", settings.manifoldReuseDistance, 0.0, 1.0, " scene length units");
+    const int order = static_cast<int>(settings.contactOrder);
+    requireWithin("contactOrder", order, static_cast<int>(ContactOrder::DeepestLast),
+                  static_cast<int>(ContactOrder::DeepestFirst), " (a ContactOrder value)");
+    requireWithin("reductionHysteresis", settings.reductionHysteresis, 0.0, 0.1, " (relative)");
 }
 
 // Every field: a field added to Settings must be added here (tests/pair_cache_test.cpp changes
@@ -41,7 +45,8 @@ bool operator==(const Settings& a, const Settings& b) {
            a.angularTolerance == b.angularTolerance && a.margin == b.margin &&
            a.spanContactRegion == b.spanContactRegion && a.maxContacts == b.maxContacts &&
            a.bruteForceSupportLimit == b.bruteForceSupportLimit && a.coplanarTolerance == b.coplanarTolerance &&
-           a.normalMethod == b.normalMethod && a.manifoldReuseDistance == b.manifoldReuseDistance;
+           a.normalMethod == b.normalMethod && a.manifoldReuseDistance == b.manifoldReuseDistance &&
+           a.contactOrder == b.contactOrder && a.reductionHysteresis == b.reductionHysteresis;
 }
 
 }  // namespace gdc

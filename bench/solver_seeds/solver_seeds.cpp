@@ -87,6 +87,13 @@ const std::vector<SettingField>& settingFields() {
              else throw std::invalid_argument("setting normalMethod: '" + v + "' is not GrowthDistance or SeparatingAxis");
          }},
         {"manifoldReuseDistance", [](gdc::Settings& s, const std::string& v) { s.manifoldReuseDistance = parseDouble("manifoldReuseDistance", v); }},
+        // The contact set the solver gets (its budget is maxContacts).
+        {"contactOrder", [](gdc::Settings& s, const std::string& v) {
+             if (v == "DeepestLast" || v == "0") s.contactOrder = gdc::ContactOrder::DeepestLast;
+             else if (v == "DeepestFirst" || v == "1") s.contactOrder = gdc::ContactOrder::DeepestFirst;
+             else throw std::invalid_argument("setting contactOrder: '" + v + "' is not DeepestLast or DeepestFirst");
+         }},
+        {"reductionHysteresis", [](gdc::Settings& s, const std::string& v) { s.reductionHysteresis = parseDouble("reductionHysteresis", v); }},
         // New fields of gdc::Settings: one line each here.
     };
     return fields;

@@ -40,12 +40,18 @@ extern "C" {
 #define GDC_NORMAL_GROWTH_DISTANCE 0 /* the paper's growth-distance normal (default) */
 #define GDC_NORMAL_SEPARATING_AXIS 1 /* the exact minimum-translation normal (slower for big hulls) */
 
+/* Values of gdcSettings.contactOrder (gdc::ContactOrder): the order in which dWorldQuickStep meets
+ * one pair's contacts. */
+#define GDC_ORDER_DEEPEST_LAST 0  /* the deepest point last: the least drift in tall stacks */
+#define GDC_ORDER_DEEPEST_FIRST 1 /* the deepest point first (default): resting bodies sleep sooner */
+
 /* The fields of gdc::Settings, in its order, with its units and the bounds gdcInstall checks
  * (settings.hpp says why each bound is there): rayCastTolerance (relative, 1e-15..1e-3),
  * maxRayCastIterations (1..10000), angularTolerance (radians, 0..0.5), margin (length unit, 0..1),
  * spanContactRegion (0 or not 0), maxContacts (1..16), bruteForceSupportLimit (0..65536),
  * coplanarTolerance (radians, 0..0.1), normalMethod (GDC_NORMAL_*), manifoldReuseDistance (length
- * unit, 0..1; 0: the pair cache is exact).
+ * unit, 0..1; 0: the pair cache is exact), contactOrder (GDC_ORDER_*), reductionHysteresis
+ * (relative, 0..0.1).
  * Always start from gdcDefaultSettings(): fields are only ever added at the end. */
 typedef struct gdcSettings {
     double rayCastTolerance;
@@ -58,6 +64,9 @@ typedef struct gdcSettings {
     double coplanarTolerance;
     int normalMethod;
     double manifoldReuseDistance;
+    /* The contact set the solver gets (its budget is maxContacts) */
+    int contactOrder;
+    double reductionHysteresis;
 } gdcSettings;
 
 /* Fills *settings with gdcontact's defaults (those of gdc::Settings). Does nothing for NULL. */

@@ -12,6 +12,23 @@ struct Settings;
 /// naming the first field out of bounds, its value and its bounds. NaN is out of every bound.
 GDCONTACT_API void validate(const Settings& settings);
 
+/// The order in which the solver meets one pair's contacts (Settings::contactOrder), by depth.
+/// ODE's dJointAttach puts each new contact joint at the head of its bodies' joint lists and the
+/// island walk follows those lists, so dWorldQuickStep meets a pair's contacts in the REVERSE of
+/// the order a near callback creates them from dCollide's array; the ODE adapter writes its array
+/// so that the solver meets them in the order named here. (The core's own array, gdc::collide,
+/// is always in the order of importance: the deepest point first, then each point that adds the
+/// most support, so that every prefix is the best set of its length.)
+enum class ContactOrder {
+    /// The solver meets the shallowest point first and the deepest last (the adapter's array is
+    /// deepest first, as earlier gdcontact wrote it). The least drift in tall stacks; resting
+    /// piles fall asleep a little later than with ODE's dBox colliders.
+    DeepestLast,
+    /// The solver meets the deepest point first and the shallowest last (default): stacks stand in
+    /// every seed measured, resting piles fall asleep sooner than with ODE's dBox colliders.
+    DeepestFirst,
+};
+
 /// How the contact normal is found (stage 1). The paper's method is GrowthDistance; the others
 /// exist to measure the speed/accuracy trade against it.
 enum class NormalMethod {
@@ -64,10 +81,17 @@ struct Settings {
     /// ODE's solvers less steady in the paper's scenes (docs/results.md).
     bool spanContactRegion = false;
 
-    /// Reduction — most contact points returned for one pair (count, 1…16). Fewer: cheaper for the
-    /// solver, a coarser support polygon (the deepest point and the largest area are always kept).
+    /// Reduction — the contact budget: most contact points returned for one geom pair (count, 1…16).
+    /// The default, 4, is the fewest points that hold a resting face's support region (a
+    /// quadrilateral, as Bullet, PhysX and Box3D keep; an edge or a vertex contact has fewer points
+    /// anyway); a larger polygon is reduced to the 4 that span the most of it, kept so that the
+    /// bodies' centroids stay inside them (docs/algorithm.md, "The contact set the solver gets").
+    /// Larger: the kept points cover the rest of the polygon (at most a few % more area for a
+    /// face–face octagon) at more rows for the solver — dWorldStep's cost grows steeply with them.
+    /// Smaller: 1 keeps the deepest point, 2 a segment, 3 a triangle (every prefix of the returned
+    /// points is itself the best of its length, so a caller's smaller limit gets the best points).
     /// Bounds [1, 16]: 16 is the size of a Manifold (kMaxManifoldPoints).
-    int maxContacts = 8;
+    int maxContacts = 4;
 
     /// Support mapping — polytopes with at most this many vertices are searched by brute force,
     /// larger ones by hill climbing over vertex adjacency (count). Measured cross-over: see
@@ -98,6 +122,27 @@ struct Settings {
     /// moved this far (Jolt's default is 1 mm and 2°). docs/benchmarks.md's trade table measures both.
     /// Bounds [0, 1] (scene length unit), as margin: a whole length unit is a unit mistake.
     double manifoldReuseDistance = 0.0;
+
+    // ---- The contact set the solver gets (docs/algorithm.md): its budget is maxContacts above;
+    // ---- the order of its points and the hysteresis of its choice. ----
+
+    /// The order in which dWorldQuickStep (projected Gauss–Seidel, which solves rows in the order
+    /// they arrive) meets one pair's contacts through the ODE adapter: by depth, see ContactOrder.
+    /// It trades drift in tall stacks (DeepestLast: less) against the time resting bodies take to
+    /// fall asleep (DeepestFirst: sooner); measured over 200 seeds in docs/algorithm.md. The
+    /// core's array is always in the order of importance.
+    /// Bounds: a ContactOrder value (checked: a value cast from an integer may be neither).
+    ContactOrder contactOrder = ContactOrder::DeepestFirst;
+
+    /// Reduction and order — hysteresis without state (relative, unitless): candidates whose depth
+    /// (for the first point) or whose gain (distance, then added area, for the others) is within
+    /// this fraction of the best count as equal, and the tie goes to a fixed identity (the point's
+    /// position along a fixed generic world direction), so that a resting pair keeps the same
+    /// points, in the same order, from step to step instead of flipping between near-equal corners
+    /// (a changing order makes resting bodies jitter and sleep later). Larger: steadier, at a
+    /// kept set up to this fraction less deep or less wide than the best; 0: always the strict
+    /// best. Bounds [0, 0.1]: above 10 % the first point may be visibly shallower than the deepest.
+    double reductionHysteresis = 0.01;
 };
 
 /// Whether two settings are the same in every field (a PairCache answers only for the settings it

@@ -71,6 +71,8 @@ gdc::Settings toSettings(const gdcSettings& in) {
     out.coplanarTolerance = in.coplanarTolerance;
     out.normalMethod = static_cast<gdc::NormalMethod>(in.normalMethod);
     out.manifoldReuseDistance = in.manifoldReuseDistance;
+    out.contactOrder = static_cast<gdc::ContactOrder>(in.contactOrder);  // checked by gdc::validate
+    out.reductionHysteresis = in.reductionHysteresis;
     return out;  // the ranges are checked by gdc::validate (in gdc::ode::install), which names the field
 }
 
@@ -91,6 +93,8 @@ void gdcDefaultSettings(gdcSettings* settings) noexcept {
     settings->coplanarTolerance = defaults.coplanarTolerance;
     settings->normalMethod = static_cast<int>(defaults.normalMethod);
     settings->manifoldReuseDistance = defaults.manifoldReuseDistance;
+    settings->contactOrder = static_cast<int>(defaults.contactOrder);
+    settings->reductionHysteresis = defaults.reductionHysteresis;
 }
 
 int gdcInstall(const gdcSettings* settings) noexcept {

@@ -266,10 +266,11 @@ const Manifold& queryThrough(const CacheSource& source, dGeomID o1, dGeomID o2, 
     return manifold;
 }
 
-// The core's contacts as ODE's: deepest first, at most maxContacts, written in place at stride
-// `skip`. `flip`: the core's A is o2 (its normal then already points from o2 into o1).
-int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int maxContacts, dGeomID o1,
-                  dGeomID o2, dContactGeom* contact, int skip) {
+// The core's contacts as ODE's: at most maxContacts, written in place at stride `skip`, in the
+// order that makes dWorldQuickStep meet them as `order` says. `flip`: the core's A is o2 (its
+// normal then already points from o2 into o1).
+int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int maxContacts, ContactOrder order,
+                  dGeomID o1, dGeomID o2, dContactGeom* contact, int skip) {
     // The core's normal points from A towards B; ODE's from o2 into o1.
     Vec3 normal = flip ? manifold.normal : Vec3(-manifold.normal);
     const double length = normal.norm();
@@ -283,13 +284,18 @@ int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int ma
     // point (depth < 0, only with Settings::margin > 0) would hold the bodies apart by its gap.
     // Such points are not passed on; a rounding-level negative depth is reported as touching.
     const double touchingTolerance = 1e-9 * sizeOfPair;
-    // Deepest first, as ODE's own colliders list them. dWorldQuickStep sweeps the contact rows in
-    // the order given; the core's order walks the contact polygon the same way round every step,
-    // and under QuickStep that fixed order roughly doubled a 10-stack's drift (samples/ode_stack).
-    // Kept points are inserted by depth as they are read (stable: equal depths keep the core's
-    // order); at most 16, so an insertion sort of (depth, index) pairs is the cheapest. Slot 0
-    // holds NaN, which no comparison passes, so the inner loop needs no bound check (a kept depth
-    // is never NaN).
+    // The core's points come in the order of importance (the deepest first; every prefix the best
+    // of its length), already reduced to maxContacts: the set is the best of its size. The ORDER
+    // is by depth, for dWorldQuickStep, which solves rows in the order they arrive: ODE's
+    // dJointAttach puts each new contact joint at the head of its bodies' joint lists and the
+    // island walk follows those lists, so the solver meets a pair's joints in the reverse of the
+    // array's order. DeepestLast writes the array deepest first (the solver meets the shallowest
+    // first), DeepestFirst the reverse. Ordered by depth, the order follows the tilt of a resting
+    // face and corrects it; a fixed order (the importance order) pushed 20-box stacks over in
+    // every seed (docs/algorithm.md). Equal depths keep the importance order. Kept points are
+    // inserted by depth as they are read; at most 16, so an insertion sort of (depth, index)
+    // pairs is the cheapest. Slot 0 holds NaN, which no comparison passes, so the inner loop needs
+    // no bound check (a kept depth is never NaN).
     struct Ranked {
         double depth;
         int index;
@@ -306,15 +312,17 @@ int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int ma
         *slot = Ranked{depth, i};
     }
     const int written = std::min(kept, maxContacts);
+    const bool reverse = order == ContactOrder::DeepestFirst;
     const dReal odeNormal[4] = {normal.x(), normal.y(), normal.z(), 0};
     char* outBytes = reinterpret_cast<char*>(contact);
     for (int k = 1; k <= written; ++k, outBytes += skip) {
-        const Vec3& position = manifold.points[ranked[k].index].position;
+        const Ranked& entry = ranked[reverse ? written + 1 - k : k];
+        const Vec3& position = manifold.points[entry.index].position;
         const dReal odePosition[4] = {position.x(), position.y(), position.z(), 0};
         dContactGeom* out = reinterpret_cast<dContactGeom*>(outBytes);
         std::memcpy(out->pos, odePosition, sizeof odePosition);
         std::memcpy(out->normal, odeNormal, sizeof odeNormal);
-        out->depth = std::max(ranked[k].depth, 0.0);
+        out->depth = std::max(entry.depth, 0.0);
         out->g1 = o1;
         out->g2 = o2;
         out->side1 = -1;
@@ -352,7 +360,8 @@ int collidePolytopeWithPlane(dGeomID o1, int class1, dGeomID o2, int class2, int
             });
     });
     if (manifold.empty()) return 0;
-    return writeContacts(manifold, planeFirst, polytope.radius(), maxContacts, o1, o2, contact, skip);
+    return writeContacts(manifold, planeFirst, polytope.radius(), maxContacts, settings.contactOrder, o1, o2, contact,
+                         skip);
 }
 
 int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip,
@@ -391,8 +400,8 @@ int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int
             });
     });
     if (manifold.empty()) return 0;
-    return writeContacts(manifold, swapped, polytope1.radius() + polytope2.radius(), maxContacts, o1, o2,
-                         contact, skip);
+    return writeContacts(manifold, swapped, polytope1.radius() + polytope2.radius(), maxContacts,
+                         settings.contactOrder, o1, o2, contact, skip);
 }
 
 // The installed settings (`settings` null) or the caller's; the pair's cache `given`, or else one

@@ -22,6 +22,14 @@ TEST_CASE("gdcDefaultSettings gives gdc::Settings' defaults, field by field") {
     CHECK(c.bruteForceSupportLimit == cpp.bruteForceSupportLimit);
     CHECK(c.coplanarTolerance == cpp.coplanarTolerance);
     CHECK(c.normalMethod == static_cast<int>(cpp.normalMethod));
+    CHECK(c.manifoldReuseDistance == cpp.manifoldReuseDistance);
+    CHECK(c.contactOrder == static_cast<int>(cpp.contactOrder));
+    CHECK(c.reductionHysteresis == cpp.reductionHysteresis);
+}
+
+TEST_CASE("gdcSettings' contact order values are gdc::ContactOrder's") {
+    CHECK(GDC_ORDER_DEEPEST_LAST == static_cast<int>(gdc::ContactOrder::DeepestLast));
+    CHECK(GDC_ORDER_DEEPEST_FIRST == static_cast<int>(gdc::ContactOrder::DeepestFirst));
 }
 
 TEST_CASE("The C functions are noexcept in C++ and have C linkage types") {

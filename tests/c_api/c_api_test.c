@@ -41,7 +41,9 @@ static void checkSettings(void) {
     gdcSettings bad;
     memset(&defaults, 0xff, sizeof defaults);
     gdcDefaultSettings(&defaults);
-    CHECK(defaults.maxContacts == 8);
+    CHECK(defaults.maxContacts == 4);
+    CHECK(defaults.contactOrder == GDC_ORDER_DEEPEST_FIRST);
+    CHECK(defaults.reductionHysteresis > 0.0 && defaults.reductionHysteresis <= 0.1);
     CHECK(defaults.maxRayCastIterations == 64);
     CHECK(defaults.spanContactRegion == 0);
     CHECK(defaults.normalMethod == GDC_NORMAL_GROWTH_DISTANCE);
@@ -63,6 +65,10 @@ static void checkSettings(void) {
     bad = defaults; bad.bruteForceSupportLimit = -1;    checkRejected(bad, "bruteForceSupportLimit");
     bad = defaults; bad.coplanarTolerance = -1.0;       checkRejected(bad, "coplanarTolerance");
     bad = defaults; bad.normalMethod = 2;               checkRejected(bad, "normalMethod");
+    bad = defaults; bad.contactOrder = 2;               checkRejected(bad, "contactOrder");
+    bad = defaults; bad.contactOrder = -1;              checkRejected(bad, "contactOrder");
+    bad = defaults; bad.reductionHysteresis = 0.2;      checkRejected(bad, "reductionHysteresis");
+    bad = defaults; bad.reductionHysteresis = NAN;      checkRejected(bad, "reductionHysteresis");
     /* success clears the message */
     CHECK(gdcInstall(&defaults) == GDC_OK);
     CHECK(strcmp(gdcLastError(), "") == 0);

@@ -83,6 +83,9 @@ TEST_CASE("every Settings field is bounded on both sides, and the message names 
         {"bruteForceSupportLimit", [](gdc::Settings& s, double v) { s.bruteForceSupportLimit = int(v); }, 0, 65536, -1, 65537},
         {"coplanarTolerance", [](gdc::Settings& s, double v) { s.coplanarTolerance = v; }, 0, 0.1, -1e-9, 0.2},
         {"normalMethod", [](gdc::Settings& s, double v) { s.normalMethod = static_cast<gdc::NormalMethod>(int(v)); }, 0, 1, -1, 2},
+        {"manifoldReuseDistance", [](gdc::Settings& s, double v) { s.manifoldReuseDistance = v; }, 0, 1, -1e-9, 2.0},
+        {"contactOrder", [](gdc::Settings& s, double v) { s.contactOrder = static_cast<gdc::ContactOrder>(int(v)); }, 0, 1, -1, 2},
+        {"reductionHysteresis", [](gdc::Settings& s, double v) { s.reductionHysteresis = v; }, 0, 0.1, -1e-9, 0.2},
     };
     for (const Field& field : fields) {
         INFO(field.name);
@@ -99,7 +102,8 @@ TEST_CASE("every Settings field is bounded on both sides, and the message names 
         }
     }
     for (double gdc::Settings::*member : {&gdc::Settings::rayCastTolerance, &gdc::Settings::angularTolerance,
-                                          &gdc::Settings::margin, &gdc::Settings::coplanarTolerance}) {
+                                          &gdc::Settings::margin, &gdc::Settings::coplanarTolerance,
+                                          &gdc::Settings::reductionHysteresis}) {
         gdc::Settings settings;
         settings.*member = nan;
         CHECK_THROWS_AS(gdc::validate(settings), gdc::InvalidInput);

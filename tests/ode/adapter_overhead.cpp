@@ -136,12 +136,20 @@ CoreCall coreCallOf(const Pair& pair) {
     return call;
 }
 
+// The settings of every call: the defaults, or with GDC_OVERHEAD_MAX_CONTACTS set, that budget (to
+// compare the cost per call at an equal number of points across a change of the default budget).
+Settings overheadSettings() {
+    Settings settings;
+    if (const char* budget = std::getenv("GDC_OVERHEAD_MAX_CONTACTS")) settings.maxContacts = std::atoi(budget);
+    return settings;
+}
+
 int measure(const std::string& name, const std::string& mode, int rounds) {
     const Stream stream = makeCase(name);
     std::vector<CoreCall> calls;
     for (const Pair& pair : stream.pairs) calls.push_back(coreCallOf(pair));
     std::vector<dContact> out(16);
-    const Settings settings;
+    const Settings settings = overheadSettings();
     long long contacts = 0, count = 0;
     auto adapterRound = [&] {
         for (const Pair& pair : stream.pairs)
@@ -237,7 +245,7 @@ int dump(int poses) {
 
 int main(int argc, char** argv) {
     dInitODE2(0);
-    gdc::ode::install();
+    gdc::ode::install(overheadSettings());
     if (argc >= 2 && std::string(argv[1]) == "dump") return dump(argc > 2 ? std::atoi(argv[2]) : 2000);
     if (argc < 3) {
         std::fprintf(stderr,

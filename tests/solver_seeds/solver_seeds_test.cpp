@@ -72,21 +72,25 @@ TEST_CASE("every gdc::Settings field is set by its name, and a contender's varia
     ss::setSetting(settings, "angularTolerance", "0.1");
     ss::setSetting(settings, "margin", "0.001");
     ss::setSetting(settings, "spanContactRegion", "true");
-    ss::setSetting(settings, "maxContacts", "4");
+    ss::setSetting(settings, "maxContacts", "5");
     ss::setSetting(settings, "bruteForceSupportLimit", "7");
     ss::setSetting(settings, "coplanarTolerance", "1e-5");
     ss::setSetting(settings, "normalMethod", "SeparatingAxis");
     ss::setSetting(settings, "manifoldReuseDistance", "0.002");
+    ss::setSetting(settings, "contactOrder", "DeepestLast");
+    ss::setSetting(settings, "reductionHysteresis", "0.02");
     CHECK(settings.rayCastTolerance == 1e-8);
     CHECK(settings.maxRayCastIterations == 12);
     CHECK(settings.angularTolerance == 0.1);
     CHECK(settings.margin == 0.001);
     CHECK(settings.spanContactRegion);
-    CHECK(settings.maxContacts == 4);
+    CHECK(settings.maxContacts == 5);
     CHECK(settings.bruteForceSupportLimit == 7);
     CHECK(settings.coplanarTolerance == 1e-5);
     CHECK(settings.normalMethod == gdc::NormalMethod::SeparatingAxis);
     CHECK(settings.manifoldReuseDistance == 0.002);
+    CHECK(settings.contactOrder == gdc::ContactOrder::DeepestLast);
+    CHECK(settings.reductionHysteresis == 0.02);
     // Every name the table knows refuses a value that does not parse (a newer field included).
     for (const std::string& name : ss::settingNames()) {
         INFO(name);

@@ -1,0 +1,280 @@
+// Not a test: a small driver that measures how the contact set gdcontact hands ODE's solvers (its
+// budget and its order) carries scenes over many seeds, against ODE's own dBox colliders in the
+// same program — the measurements behind docs/algorithm.md, "The contact set the solver gets".
+// Scenes are chaotic under dWorldQuickStep: each seed sets dRandSetSeed (QuickStep's row shuffles)
+// and jitters the start poses; a figure is a count or a percentile over the seeds.
+//
+// Usage: ode_contact_order_seeds SCENE CONTENDER SEEDS [ITERATIONS]
+//   SCENE: heavy (100 kg on two 1 kg boxes) | heavy1000 | stack10 | stack20 | pile (time to sleep)
+//   CONTENDER: dbox (ODE's own box colliders) | gdc:ORDER:BUDGET:HYSTERESIS, ORDER one of
+//     last (Settings::ContactOrder::DeepestLast), first (DeepestFirst), or, to measure what an
+//     order by depth is worth, importance-last / importance-first: the core's own array (the order
+//     of importance, gdc::collide) made into joints as it is / reversed, so that the solver meets
+//     it reversed / as it is; BUDGET maxContacts, HYSTERESIS reductionHysteresis
+//   e.g. ode_contact_order_seeds stack20 gdc:first:4:0.01 200 20
+// Prints one line: the scene, the contender, the failed seeds, drift percentiles (m), contacts per
+// step, and for `pile` the bodies asleep at 5 s and the median time until all sleep.
+#include <gdcontact/gdcontact.hpp>
+#include <gdcontact/ode.hpp>
+
+#include <ode/ode.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace {
+
+enum class Order { Last, First, ImportanceLast, ImportanceFirst };
+
+struct Contender {
+    bool ode = false;
+    Order order = Order::Last;
+    gdc::Settings settings;
+};
+
+Contender parseContender(const std::string& text) {
+    Contender contender;
+    if (text == "dbox") {
+        contender.ode = true;
+        return contender;
+    }
+    char order[16] = {};
+    int budget = 4;
+    double hysteresis = 0.01;
+    if (std::sscanf(text.c_str(), "gdc:%15[a-z-]:%d:%lf", order, &budget, &hysteresis) < 1) {
+        std::fprintf(stderr, "bad contender %s\n", text.c_str());
+        std::exit(2);
+    }
+    const std::string o = order;
+    contender.order = o == "first"              ? Order::First
+                      : o == "importance-last"  ? Order::ImportanceLast
+                      : o == "importance-first" ? Order::ImportanceFirst
+                                                : Order::Last;
+    contender.settings.maxContacts = budget;
+    contender.settings.reductionHysteresis = hysteresis;
+    contender.settings.contactOrder =
+        contender.order == Order::First ? gdc::ContactOrder::DeepestFirst : gdc::ContactOrder::DeepestLast;
+    return contender;
+}
+
+struct World {
+    dWorldID world;
+    dSpaceID space;
+    dJointGroupID contacts;
+    std::vector<dBodyID> bodies;
+    const Contender* contender;
+    long contactCount = 0;
+};
+
+// The core's contacts for a box–box or box–plane pair in its own order (the order of importance),
+// in ODE's convention (normal from o2 into o1, depth ≥ 0).
+int coreContacts(dGeomID o1, dGeomID o2, const gdc::Settings& settings, dContactGeom* out) {
+    const bool planeFirst = dGeomGetClass(o1) == dPlaneClass;
+    const bool planeSecond = dGeomGetClass(o2) == dPlaneClass;
+    dGeomID body = planeFirst ? o2 : o1;
+    const auto a = gdc::ode::polytopeOf(body);
+    gdc::Manifold m;
+    if (planeFirst || planeSecond) {
+        dVector4 plane;
+        dGeomPlaneGetParams(planeFirst ? o1 : o2, plane);
+        m = gdc::collide(*a, gdc::ode::poseOf(body), gdc::HalfSpace{gdc::Vec3(plane[0], plane[1], plane[2]), plane[3]},
+                         settings);
+    } else {
+        m = gdc::collide(*a, gdc::ode::poseOf(o1), *gdc::ode::polytopeOf(o2), gdc::ode::poseOf(o2), settings);
+    }
+    const gdc::Vec3 normal = planeFirst ? m.normal : gdc::Vec3(-m.normal);  // the core's A is `body`
+    int n = 0;
+    for (int i = 0; i < m.pointCount; ++i) {
+        if (m.points[i].depth < 0) continue;
+        dContactGeom& g = out[n++];
+        g = dContactGeom{};
+        for (int k = 0; k < 3; ++k) g.pos[k] = m.points[i].position[k], g.normal[k] = normal[k];
+        g.depth = m.points[i].depth;
+        g.g1 = o1, g.g2 = o2, g.side1 = g.side2 = -1;
+    }
+    return n;
+}
+
+void nearCallback(void* data, dGeomID o1, dGeomID o2) {
+    World& w = *static_cast<World*>(data);
+    dBodyID b1 = dGeomGetBody(o1), b2 = dGeomGetBody(o2);
+    if (b1 && b2 && dAreConnectedExcluding(b1, b2, dJointTypeContact)) return;
+    dContactGeom geoms[16];
+    const bool importance =
+        w.contender->order == Order::ImportanceLast || w.contender->order == Order::ImportanceFirst;
+    const int n = importance ? coreContacts(o1, o2, w.contender->settings, geoms) : dCollide(o1, o2, 16, geoms, sizeof(dContactGeom));
+    if (w.contender->order == Order::ImportanceFirst) std::reverse(geoms, geoms + n);
+    for (int i = 0; i < n; ++i) {
+        dContact contact{};
+        contact.surface.mode = dContactApprox1;
+        contact.surface.mu = 0.6;
+        contact.geom = geoms[i];
+        dJointID joint = dJointCreateContact(w.world, w.contacts, &contact);
+        dJointAttach(joint, b1, b2);
+    }
+    w.contactCount += n;
+}
+
+dBodyID addBox(World& w, double sx, double sy, double sz, double mass, const dReal* position, double yaw) {
+    dBodyID body = dBodyCreate(w.world);
+    dMass m;
+    dMassSetBoxTotal(&m, mass, sx, sy, sz);
+    dBodySetMass(body, &m);
+    dBodySetPosition(body, position[0], position[1], position[2]);
+    dMatrix3 r;
+    dRFromAxisAndAngle(r, 0, 0, 1, yaw);
+    dBodySetRotation(body, r);
+    dGeomID geom = dCreateBox(w.space, sx, sy, sz);
+    dGeomSetBody(geom, body);
+    w.bodies.push_back(body);
+    return body;
+}
+
+struct Outcome {
+    bool failed = false;
+    double drift = 0;      // m: the scene's drift measure
+    double asleepAt5 = 0;  // pile: bodies disabled at 5 s
+    double allAsleep = INFINITY;  // pile: s until every body is disabled
+    double contactsPerStep = 0;
+};
+
+Outcome run(const std::string& scene, const Contender& contender, int seed, int iterations) {
+    dInitODE2(0);
+    if (!contender.ode) gdc::ode::install(contender.settings);
+    dRandSetSeed(static_cast<unsigned long>(seed));
+    std::mt19937 random(static_cast<unsigned>(seed) * 2654435761u + 1);
+    std::uniform_real_distribution<double> jitter(-1, 1);
+    World w;
+    w.contender = &contender;
+    w.world = dWorldCreate();
+    w.space = dHashSpaceCreate(nullptr);
+    w.contacts = dJointGroupCreate(0);
+    dWorldSetGravity(w.world, 0, 0, -9.81);
+    dWorldSetQuickStepNumIterations(w.world, iterations);
+    dCreatePlane(w.space, 0, 0, 1, 0);
+    const double dt = 0.01;
+    double seconds = 10;
+    Outcome outcome;
+    std::vector<std::array<double, 3>> start;
+    if (scene == "heavy" || scene == "heavy1000") {
+        const double heavy = scene == "heavy" ? 100 : 1000;
+        for (int side : {-1, 1}) {
+            const dReal p[3] = {side * 0.75 + 0.01 * jitter(random), 0.01 * jitter(random), 0.5};
+            addBox(w, 1, 1, 1, 1, p, 0.02 * jitter(random));
+        }
+        const dReal p[3] = {0.02 * jitter(random), 0.02 * jitter(random), 1.5};
+        addBox(w, 3, 1, 1, heavy, p, 0.02 * jitter(random));
+        seconds = 5;
+    } else if (scene == "stack10" || scene == "stack20") {
+        const int count = scene == "stack10" ? 10 : 20;
+        for (int i = 0; i < count; ++i) {
+            const dReal p[3] = {0.01 * jitter(random), 0.01 * jitter(random), 0.5 + i};
+            addBox(w, 1, 1, 1, 1, p, 0.01 * jitter(random));
+        }
+        seconds = 10;
+    } else if (scene == "pile") {
+        dWorldSetAutoDisableFlag(w.world, 1);  // ODE's default thresholds
+        std::uniform_real_distribution<double> unit(0, 1);
+        for (int i = 0; i < 24; ++i) {
+            const dReal p[3] = {1.5 * jitter(random), 1.5 * jitter(random), 0.6 + 1.1 * i / 3.0};
+            dBodyID body = addBox(w, 1, 1, 1, 1, p, 3.14159 * jitter(random));
+            dMatrix3 r;
+            dRFromEulerAngles(r, 0.3 * jitter(random), 0.3 * jitter(random), 3.14159 * jitter(random));
+            dBodySetRotation(body, r);
+        }
+        seconds = 10;
+    } else {
+        std::fprintf(stderr, "unknown scene %s\n", scene.c_str());
+        std::exit(2);
+    }
+    for (dBodyID body : w.bodies) {
+        const dReal* q = dBodyGetPosition(body);
+        start.push_back({q[0], q[1], q[2]});
+    }
+    const int steps = static_cast<int>(std::lround(seconds / dt));
+    for (int step = 0; step < steps; ++step) {
+        dSpaceCollide(w.space, &w, &nearCallback);
+        dWorldQuickStep(w.world, dt);
+        dJointGroupEmpty(w.contacts);
+        if (scene == "pile") {
+            int asleep = 0;
+            for (dBodyID body : w.bodies) asleep += dBodyIsEnabled(body) ? 0 : 1;
+            if (step + 1 == static_cast<int>(std::lround(5 / dt))) outcome.asleepAt5 = asleep;
+            if (asleep == static_cast<int>(w.bodies.size()) && !std::isfinite(outcome.allAsleep))
+                outcome.allAsleep = (step + 1) * dt;
+        }
+    }
+    outcome.contactsPerStep = static_cast<double>(w.contactCount) / steps;
+    auto horizontal = [&](int i) {
+        const dReal* q = dBodyGetPosition(w.bodies[i]);
+        return std::hypot(q[0] - start[i][0], q[1] - start[i][1]);
+    };
+    const int n = static_cast<int>(w.bodies.size());
+    if (scene == "heavy" || scene == "heavy1000") {
+        const dReal* top = dBodyGetPosition(w.bodies[2]);
+        const dReal* r = dBodyGetRotation(w.bodies[2]);
+        outcome.drift = std::max({horizontal(0), horizontal(1), horizontal(2)});
+        // Collapsed: the heavy box sank by more than 10 cm, tilted by more than ~6°, or a light box slid away.
+        outcome.failed = top[2] < 1.4 || r[10] < 0.995 || horizontal(0) > 0.25 || horizontal(1) > 0.25;
+    } else if (scene == "pile") {
+        outcome.drift = 0;
+    } else {
+        const dReal* top = dBodyGetPosition(w.bodies[n - 1]);
+        outcome.drift = horizontal(n - 1);
+        outcome.failed = top[2] < n - 1.0;  // the top box fell (by more than half its size)
+    }
+    dJointGroupDestroy(w.contacts);
+    dSpaceDestroy(w.space);
+    dWorldDestroy(w.world);
+    dCloseODE();
+    return outcome;
+}
+
+double percentile(std::vector<double> values, double p) {
+    if (values.empty()) return NAN;
+    std::sort(values.begin(), values.end());
+    const double at = p * (values.size() - 1);
+    const size_t below = static_cast<size_t>(std::floor(at));
+    const size_t above = std::min(values.size() - 1, below + 1);
+    return values[below] + (at - below) * (values[above] - values[below]);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 4) {
+        std::fprintf(stderr, "usage: %s SCENE CONTENDER SEEDS [ITERATIONS]\n", argv[0]);
+        return 2;
+    }
+    const std::string scene = argv[1];
+    const Contender contender = parseContender(argv[2]);
+    const int seeds = std::atoi(argv[3]);
+    const int iterations = argc > 4 ? std::atoi(argv[4]) : 20;
+    int failed = 0;
+    std::vector<double> drifts, asleep, allAsleep;
+    double contacts = 0;
+    for (int seed = 1; seed <= seeds; ++seed) {
+        const Outcome o = run(scene, contender, seed, iterations);
+        failed += o.failed ? 1 : 0;
+        drifts.push_back(o.drift);
+        asleep.push_back(o.asleepAt5);
+        allAsleep.push_back(o.allAsleep);
+        contacts += o.contactsPerStep;
+    }
+    std::printf("%-9s %-18s seeds %3d iters %2d  failed %3d  drift p50 %8.4f p90 %8.4f  contacts/step %6.2f",
+                scene.c_str(), argv[2], seeds, iterations, failed, percentile(drifts, 0.5), percentile(drifts, 0.9),
+                contacts / seeds);
+    if (scene == "pile")
+        std::printf("  asleep@5s %5.2f  all-asleep p50 %5.2f s (never in %d)", percentile(asleep, 0.5) * 0 +
+                    [&] { double s = 0; for (double a : asleep) s += a; return s / seeds; }(),
+                    percentile(allAsleep, 0.5),
+                    static_cast<int>(std::count_if(allAsleep.begin(), allAsleep.end(), [](double t) { return !std::isfinite(t); })));
+    std::printf("\n");
+    return 0;
+}
