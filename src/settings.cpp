@@ -32,6 +32,10 @@ void validate(const Settings& settings) {
     requireWithin("normalMethod", method, static_cast<int>(NormalMethod::GrowthDistance),
                   static_cast<int>(NormalMethod::SeparatingAxis), " (a NormalMethod value)");
     requireWithin("manifoldReuseDistance", settings.manifoldReuseDistance, 0.0, 1.0, " scene length units");
+    // Per-body-pair contact budget
+    requireWithin("maxBodyPairContacts", settings.maxBodyPairContacts, 0, static_cast<int>(kMaxManifoldPoints),
+                  " contacts (0: off)");
+    requireWithin("bodyPairNormalTolerance", settings.bodyPairNormalTolerance, 0.0, 0.5, " rad");
 }
 
 // Every field: a field added to Settings must be added here (tests/pair_cache_test.cpp changes
@@ -41,7 +45,10 @@ bool operator==(const Settings& a, const Settings& b) {
            a.angularTolerance == b.angularTolerance && a.margin == b.margin &&
            a.spanContactRegion == b.spanContactRegion && a.maxContacts == b.maxContacts &&
            a.bruteForceSupportLimit == b.bruteForceSupportLimit && a.coplanarTolerance == b.coplanarTolerance &&
-           a.normalMethod == b.normalMethod && a.manifoldReuseDistance == b.manifoldReuseDistance;
+           a.normalMethod == b.normalMethod && a.manifoldReuseDistance == b.manifoldReuseDistance &&
+           // Per-body-pair contact budget
+           a.maxBodyPairContacts == b.maxBodyPairContacts &&
+           a.bodyPairNormalTolerance == b.bodyPairNormalTolerance;
 }
 
 }  // namespace gdc

@@ -195,11 +195,13 @@ TEST_CASE("pair cache: a cache passed with other shapes, settings or half-space 
                 case 6: s.bruteForceSupportLimit += 1; break;
                 case 7: s.coplanarTolerance *= 2; break;
                 case 8: s.normalMethod = NormalMethod::SeparatingAxis; break;
-                default: s.manifoldReuseDistance = 1e-3; break;
+                case 9: s.manifoldReuseDistance = 1e-3; break;
+                case 10: s.maxBodyPairContacts = 0; break;
+                default: s.bodyPairNormalTolerance *= 2; break;
             }
             return s;
         };
-        for (int field = 0; field <= 9; ++field) {
+        for (int field = 0; field <= 11; ++field) {
             INFO("field " << field);
             CHECK(changed(field) != Settings{});
             collide(box, poseA, *other, poseB, changed(field), cache);

@@ -155,6 +155,16 @@ struct Scene::Impl {
     };
     std::vector<TouchingPair> touching;
     std::vector<dContactGeom> wholeStepContacts;
+    // The gdcontact method with a body-pair budget (Settings::maxBodyPairContacts): each pair's
+    // contacts, in the pairs' order, held until every pair is collided, so that the pairs between
+    // the same two bodies are reduced together (gdc::ode::reduceBodyPair) before joints are made.
+    struct HeldPair {
+        dGeomID geom1, geom2;
+        std::size_t offset;  // into heldContacts
+        int count;
+    };
+    std::vector<HeldPair> held;
+    std::vector<dContactGeom> heldContacts;
 };
 
 Scene::Scene(std::string name, const SceneOptions& options, const SolverSettings& defaults)
@@ -430,7 +440,47 @@ void Scene::collidePair(dGeomID o1, dGeomID o2) {
             break;
         }
     }
+    if (method_ == Method::Gdcontact && contactSettings_.maxBodyPairContacts > 0) {
+        impl_->held.push_back({o1, o2, impl_->heldContacts.size(), count});
+        impl_->heldContacts.insert(impl_->heldContacts.end(), out, out + count);
+        return;
+    }
     addContactJoints(o1, o2, out, count);
+}
+
+void Scene::addHeldContacts() {
+    // As a user's near callback would use gdc::ode::reduceBodyPair: the contacts of all pairs of
+    // geoms between two bodies, gathered in the pairs' order, reduced together; each survivor keeps
+    // its geoms, so the joints are made pair by pair, in the order the other methods make them.
+    Impl& impl = *impl_;
+    std::vector<int> done(impl.held.size(), 0);
+    std::vector<dContactGeom> gathered;
+    for (std::size_t i = 0; i < impl.held.size(); ++i) {
+        if (done[i]) continue;
+        const dBodyID b1 = dGeomGetBody(impl.held[i].geom1), b2 = dGeomGetBody(impl.held[i].geom2);
+        auto samePair = [&](const Impl::HeldPair& other) {
+            const dBodyID c1 = dGeomGetBody(other.geom1), c2 = dGeomGetBody(other.geom2);
+            return (c1 == b1 && c2 == b2) || (c1 == b2 && c2 == b1);
+        };
+        gathered.clear();
+        std::vector<std::size_t> members;
+        for (std::size_t j = i; j < impl.held.size(); ++j) {
+            if (done[j] || !samePair(impl.held[j])) continue;
+            done[j] = 1;
+            members.push_back(j);
+            const dContactGeom* first = impl.heldContacts.data() + impl.held[j].offset;
+            gathered.insert(gathered.end(), first, first + impl.held[j].count);
+        }
+        const int kept = gdc::ode::reduceBodyPair(b1, b2, gathered.data(), static_cast<int>(gathered.size()),
+                                                  sizeof(dContactGeom), contactSettings_);
+        // The survivors are in their pairs' order: each member pair's run of them.
+        int next = 0;
+        for (std::size_t j : members) {
+            const int begin = next;
+            while (next < kept && gathered[next].g1 == impl.held[j].geom1 && gathered[next].g2 == impl.held[j].geom2) ++next;
+            addContactJoints(impl.held[j].geom1, impl.held[j].geom2, gathered.data() + begin, next - begin);
+        }
+    }
 }
 
 void Scene::addContactJoints(dGeomID o1, dGeomID o2, const dContactGeom* out, int count) {
@@ -515,9 +565,12 @@ void Scene::step() {
         collideWholeStep();
     } else {
         impl_->pairs.clear();
+        impl_->held.clear();
+        impl_->heldContacts.clear();
         dSpaceCollide(space_, this, &Scene::nearCallback);
         std::sort(impl_->pairs.begin(), impl_->pairs.end());
         for (const Impl::Pair& pair : impl_->pairs) collidePair(pair.geom1, pair.geom2);
+        addHeldContacts();
     }
     if (wholeStepCollision_) impl_->stepPenetration = groundPenetration();
     if (method_ == Method::Tracking) {

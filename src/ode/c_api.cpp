@@ -71,6 +71,9 @@ gdc::Settings toSettings(const gdcSettings& in) {
     out.coplanarTolerance = in.coplanarTolerance;
     out.normalMethod = static_cast<gdc::NormalMethod>(in.normalMethod);
     out.manifoldReuseDistance = in.manifoldReuseDistance;
+    // Per-body-pair contact budget
+    out.maxBodyPairContacts = in.maxBodyPairContacts;
+    out.bodyPairNormalTolerance = in.bodyPairNormalTolerance;
     return out;  // the ranges are checked by gdc::validate (in gdc::ode::install), which names the field
 }
 
@@ -91,6 +94,9 @@ void gdcDefaultSettings(gdcSettings* settings) noexcept {
     settings->coplanarTolerance = defaults.coplanarTolerance;
     settings->normalMethod = static_cast<int>(defaults.normalMethod);
     settings->manifoldReuseDistance = defaults.manifoldReuseDistance;
+    // Per-body-pair contact budget
+    settings->maxBodyPairContacts = defaults.maxBodyPairContacts;
+    settings->bodyPairNormalTolerance = defaults.bodyPairNormalTolerance;
 }
 
 int gdcInstall(const gdcSettings* settings) noexcept {

@@ -63,6 +63,9 @@ static void checkSettings(void) {
     bad = defaults; bad.bruteForceSupportLimit = -1;    checkRejected(bad, "bruteForceSupportLimit");
     bad = defaults; bad.coplanarTolerance = -1.0;       checkRejected(bad, "coplanarTolerance");
     bad = defaults; bad.normalMethod = 2;               checkRejected(bad, "normalMethod");
+    bad = defaults; bad.maxBodyPairContacts = 17;       checkRejected(bad, "maxBodyPairContacts");
+    bad = defaults; bad.bodyPairNormalTolerance = 0.6;  checkRejected(bad, "bodyPairNormalTolerance");
+    CHECK(defaults.maxBodyPairContacts == 4);
     /* success clears the message */
     CHECK(gdcInstall(&defaults) == GDC_OK);
     CHECK(strcmp(gdcLastError(), "") == 0);
