@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
@@ -126,7 +127,13 @@ int collide(Contender& c, double& reductionMs) {
         made = contacts;
     }
     reductionMs = std::chrono::duration<double, std::milli>(Clock::now() - reductionStart).count();
+    int joints = 0;
     for (const dContactGeom& g : made) {
+        // As the scene: ODE's convex collider returns a zero normal for exactly touching shapes
+        // (ODE would abort on it); such a contact carries no direction and is dropped.
+        const double length = std::sqrt(g.normal[0] * g.normal[0] + g.normal[1] * g.normal[1] + g.normal[2] * g.normal[2]);
+        if (!(std::abs(length - 1.0) <= 1e-6) || !std::isfinite(g.depth)) continue;
+        ++joints;
         dContact contact{};
         contact.surface.mode = dContactApprox1;
         contact.surface.mu = solver.mu;
@@ -134,7 +141,7 @@ int collide(Contender& c, double& reductionMs) {
         dJointID joint = dJointCreateContact(c.scene->world(), c.joints, &contact);
         dJointAttach(joint, dGeomGetBody(g.g1), dGeomGetBody(g.g2));
     }
-    return static_cast<int>(made.size());
+    return joints;
 }
 
 double median(std::vector<double> values) {
