@@ -165,6 +165,9 @@ int main(int argc, char** argv) {
             gdc::Settings contactSettings = scene->contactSettings();
             contactSettings.maxBodyPairContacts = bodyPairContacts;
             scene->setContactSettings(contactSettings);
+            // big_world's whole-step collision (spaceCollide) uses install()'s settings; installing
+            // is harmless for the gdc method (it calls gdcontact directly) and would reroute the others.
+            if (options.method == gdc::scenes::Method::Gdcontact) gdc::ode::install(contactSettings);
         }
         const SolverSettings& used = scene->solver();
         if (steps < 0) steps = static_cast<long>(scene->duration() / used.dt + 0.5);
