@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 namespace gdc::ode {
 
@@ -142,6 +143,45 @@ namespace gdc::ode {
 ///     for (int i = 0; i < kept; ++i) { ... dJointCreateContact(world, group, &contact); ... }
 GDCONTACT_API int reduceBodyPair(dBodyID b1, dBodyID b2, dContactGeom* contacts, int count, int skip,
                                  const Settings& settings);
+
+/// Collects one step's contacts from a near callback, then hands them over with the body-pair
+/// budget applied — what spaceCollide does, for a program that keeps its own near callback:
+///
+///     gdc::ode::BodyPairContacts collected(settings);     // kept across steps: reuses its memory
+///     // near callback:  n = dCollide(o1, o2, 8, contacts, sizeof(dContactGeom));
+///     //                 collected.add(o1, o2, contacts, n);
+///     dSpaceCollide(space, &collected, &nearCallback);
+///     collected.deliver(data, &handler);                    // handler as spaceCollide's; then cleared
+///
+/// deliver() reduces the contacts of each pair of bodies that touch through several geom pairs
+/// (reduceBodyPair, in the order the pairs were added) and calls `handler(data, o1, o2, contacts,
+/// count)` once per added geom pair with its surviving contacts (none survived, or none added: not
+/// called), in the order of add(). So the output depends only on that order. Pairs of two static
+/// geoms are handed over unchanged. Not thread-safe: one collector per thread.
+class GDCONTACT_API BodyPairContacts {
+public:
+    /// Throws InvalidInput for settings gdc::validate refuses.
+    explicit BodyPairContacts(const Settings& settings = {});
+    /// One geom pair's contacts (`count` at `contacts`, stride sizeof(dContactGeom)), as dCollide
+    /// gave them for (o1, o2). Throws InvalidInput for count < 0 or null contacts with count > 0.
+    void add(dGeomID o1, dGeomID o2, const dContactGeom* contacts, int count);
+    /// Reduces, hands every pair over, and clears (also when the handler throws).
+    void deliver(void* data, ContactHandler handler);
+    /// Forgets what was added.
+    void clear();
+
+private:
+    struct Pair {
+        dGeomID o1, o2;
+        std::size_t offset;
+        int count;
+    };
+    Settings settings_;
+    std::vector<Pair> pairs_;
+    std::vector<dContactGeom> contacts_;
+    std::vector<dContactGeom> gathered_;
+    std::vector<int> done_;
+};
 
 }  // namespace gdc::ode
 

@@ -449,38 +449,16 @@ void Scene::collidePair(dGeomID o1, dGeomID o2) {
 }
 
 void Scene::addHeldContacts() {
-    // As a user's near callback would use gdc::ode::reduceBodyPair: the contacts of all pairs of
-    // geoms between two bodies, gathered in the pairs' order, reduced together; each survivor keeps
-    // its geoms, so the joints are made pair by pair, in the order the other methods make them.
-    Impl& impl = *impl_;
-    std::vector<int> done(impl.held.size(), 0);
-    std::vector<dContactGeom> gathered;
-    for (std::size_t i = 0; i < impl.held.size(); ++i) {
-        if (done[i]) continue;
-        const dBodyID b1 = dGeomGetBody(impl.held[i].geom1), b2 = dGeomGetBody(impl.held[i].geom2);
-        auto samePair = [&](const Impl::HeldPair& other) {
-            const dBodyID c1 = dGeomGetBody(other.geom1), c2 = dGeomGetBody(other.geom2);
-            return (c1 == b1 && c2 == b2) || (c1 == b2 && c2 == b1);
-        };
-        gathered.clear();
-        std::vector<std::size_t> members;
-        for (std::size_t j = i; j < impl.held.size(); ++j) {
-            if (done[j] || !samePair(impl.held[j])) continue;
-            done[j] = 1;
-            members.push_back(j);
-            const dContactGeom* first = impl.heldContacts.data() + impl.held[j].offset;
-            gathered.insert(gathered.end(), first, first + impl.held[j].count);
-        }
-        const int kept = gdc::ode::reduceBodyPair(b1, b2, gathered.data(), static_cast<int>(gathered.size()),
-                                                  sizeof(dContactGeom), contactSettings_);
-        // The survivors are in their pairs' order: each member pair's run of them.
-        int next = 0;
-        for (std::size_t j : members) {
-            const int begin = next;
-            while (next < kept && gathered[next].g1 == impl.held[j].geom1 && gathered[next].g2 == impl.held[j].geom2) ++next;
-            addContactJoints(impl.held[j].geom1, impl.held[j].geom2, gathered.data() + begin, next - begin);
-        }
-    }
+    // As a user's own near callback would apply the body-pair budget: every pair's contacts added
+    // to a gdc::ode::BodyPairContacts in the pairs' (creation) order, then delivered — the pairs
+    // between the same two bodies reduced together, each pair handed its survivors, in that order.
+    if (impl_->held.empty()) return;
+    gdc::ode::BodyPairContacts collected(contactSettings_);
+    for (const Impl::HeldPair& pair : impl_->held)
+        collected.add(pair.geom1, pair.geom2, impl_->heldContacts.data() + pair.offset, pair.count);
+    collected.deliver(this, [](void* data, dGeomID o1, dGeomID o2, dContactGeom* contacts, int count) {
+        static_cast<Scene*>(data)->addContactJoints(o1, o2, contacts, count);
+    });
 }
 
 void Scene::addContactJoints(dGeomID o1, dGeomID o2, const dContactGeom* out, int count) {

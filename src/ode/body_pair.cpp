@@ -5,7 +5,10 @@
 
 #include "body_pair.hpp"
 
+#include <functional>
+#include <map>
 #include <string>
+#include <utility>
 
 namespace gdc::ode {
 namespace detail {
@@ -78,6 +81,81 @@ int reduceBodyPair(dBodyID b1, dBodyID b2, dContactGeom* contacts, int count, in
             *reinterpret_cast<dContactGeom*>(base + static_cast<std::size_t>(k) * skip) =
                 detail::at(contacts, kept[k], skip);
     return survivors;
+}
+
+BodyPairContacts::BodyPairContacts(const Settings& settings) : settings_(settings) { validate(settings_); }
+
+void BodyPairContacts::add(dGeomID o1, dGeomID o2, const dContactGeom* contacts, int count) {
+    if (count < 0) throw InvalidInput("gdc::ode::BodyPairContacts::add: negative count " + std::to_string(count));
+    if (count > 0 && !contacts) throw InvalidInput("gdc::ode::BodyPairContacts::add: null contacts");
+    pairs_.push_back({o1, o2, contacts_.size(), count});
+    contacts_.insert(contacts_.end(), contacts, contacts + count);
+}
+
+void BodyPairContacts::clear() {
+    pairs_.clear();
+    contacts_.clear();
+}
+
+void BodyPairContacts::deliver(void* data, ContactHandler handler) {
+    if (!handler) throw InvalidInput("gdc::ode::BodyPairContacts::deliver: null handler");
+    struct Clear {  // cleared whatever happens
+        BodyPairContacts& self;
+        ~Clear() { self.clear(); }
+    } clearAtEnd{*this};
+    thread_local std::vector<BodyPairContact> points;
+    thread_local std::vector<int> kept;
+    // Survivor counts per pair (−1: not reduced, its contacts as added).
+    done_.assign(pairs_.size(), -1);
+    if (settings_.maxBodyPairContacts > 0) {
+        // The pairs of each pair of bodies, in the order added (two single-geom bodies touch
+        // through one pair at most: they skip the table).
+        auto single = [](dBodyID body) {
+            const dGeomID first = body ? dBodyGetFirstGeom(body) : nullptr;
+            return first && !dBodyGetNextGeom(first);
+        };
+        std::map<std::pair<dBodyID, dBodyID>, std::vector<std::size_t>> byBodies;
+        std::vector<std::pair<dBodyID, dBodyID>> order;
+        for (std::size_t i = 0; i < pairs_.size(); ++i) {
+            dBodyID b1 = dGeomGetBody(pairs_[i].o1), b2 = dGeomGetBody(pairs_[i].o2);
+            if (b1 == b2 || (single(b1) && single(b2))) continue;
+            if (std::less<dBodyID>()(b2, b1)) std::swap(b1, b2);
+            auto [entry, created] = byBodies.try_emplace({b1, b2});
+            if (created) order.push_back({b1, b2});
+            entry->second.push_back(i);
+        }
+        for (const auto& key : order) {
+            const std::vector<std::size_t>& members = byBodies[key];
+            const dBodyID b1 = dGeomGetBody(pairs_[members[0]].o1), b2 = dGeomGetBody(pairs_[members[0]].o2);
+            if (members.size() < 2) continue;
+            gathered_.clear();
+            for (std::size_t j : members) {
+                const dContactGeom* first = contacts_.data() + pairs_[j].offset;
+                gathered_.insert(gathered_.end(), first, first + pairs_[j].count);
+            }
+            int survivors;
+            try {
+                survivors = detail::chooseBodyPairContacts(b1, b2, gathered_.data(), static_cast<int>(gathered_.size()),
+                                                           sizeof(dContactGeom), settings_, points, kept);
+            } catch (const InvalidInput&) {  // a contact with a zero normal (ODE's convex collider): as added
+                continue;
+            }
+            // Each survivor back into its own pair's contacts, in order.
+            std::size_t from = 0;
+            for (std::size_t j : members) done_[j] = 0;
+            for (std::size_t m = 0, k = 0; m < members.size(); ++m) {
+                const std::size_t j = members[m];
+                const std::size_t end = from + static_cast<std::size_t>(pairs_[j].count);
+                for (; k < static_cast<std::size_t>(survivors) && static_cast<std::size_t>(kept[k]) < end; ++k)
+                    contacts_[pairs_[j].offset + static_cast<std::size_t>(done_[j]++)] = gathered_[static_cast<std::size_t>(kept[k])];
+                from = end;
+            }
+        }
+    }
+    for (std::size_t i = 0; i < pairs_.size(); ++i) {
+        const int count = done_[i] >= 0 ? done_[i] : pairs_[i].count;
+        if (count > 0) handler(data, pairs_[i].o1, pairs_[i].o2, contacts_.data() + pairs_[i].offset, count);
+    }
 }
 
 }  // namespace gdc::ode

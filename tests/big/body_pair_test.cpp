@@ -240,6 +240,25 @@ TEST_CASE("spaceCollide with the body-pair budget: the near callback + reduceBod
         INFO(threads << " threads");
         CHECK(sameReports(reported, reference));
     }
+
+    // A user's own near callback with gdc::ode::BodyPairContacts: the same, twice (it clears).
+    gdc::ode::BodyPairContacts collected(settings);
+    for (int round = 0; round < 2; ++round) {
+        dSpaceCollide(heap.space, &collected, [](void* data, dGeomID o1, dGeomID o2) {
+            dContactGeom contacts[kMaxContacts];
+            const int count = dCollide(o1, o2, kMaxContacts, contacts, sizeof(dContactGeom));
+            static_cast<gdc::ode::BodyPairContacts*>(data)->add(o1, o2, contacts, count);
+        });
+        std::vector<Reported> reported;
+        collected.deliver(&reported, &recordHandler);
+        INFO("BodyPairContacts, round " << round);
+        CHECK(sameReports(reported, reference));
+    }
+    CHECK_THROWS_AS(collected.add(nullptr, nullptr, nullptr, 1), gdc::InvalidInput);
+    CHECK_THROWS_AS(collected.deliver(nullptr, nullptr), gdc::InvalidInput);
+    gdc::Settings bad = settings;
+    bad.bodyPairNormalTolerance = -1;
+    CHECK_THROWS_WITH(gdc::ode::BodyPairContacts(bad), Catch::Contains("bodyPairNormalTolerance"));
 }
 
 TEST_CASE("spaceCollide with the budget off (0) gives dCollide's contacts for composites", "[big]") {

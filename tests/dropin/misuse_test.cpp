@@ -83,6 +83,9 @@ TEST_CASE("every Settings field is bounded on both sides, and the message names 
         {"bruteForceSupportLimit", [](gdc::Settings& s, double v) { s.bruteForceSupportLimit = int(v); }, 0, 65536, -1, 65537},
         {"coplanarTolerance", [](gdc::Settings& s, double v) { s.coplanarTolerance = v; }, 0, 0.1, -1e-9, 0.2},
         {"normalMethod", [](gdc::Settings& s, double v) { s.normalMethod = static_cast<gdc::NormalMethod>(int(v)); }, 0, 1, -1, 2},
+        // Per-body-pair contact budget
+        {"maxBodyPairContacts", [](gdc::Settings& s, double v) { s.maxBodyPairContacts = int(v); }, 0, 16, -1, 17},
+        {"bodyPairNormalTolerance", [](gdc::Settings& s, double v) { s.bodyPairNormalTolerance = v; }, 0, 0.5, -1e-9, 0.6},
     };
     for (const Field& field : fields) {
         INFO(field.name);
