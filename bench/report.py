@@ -668,6 +668,7 @@ switched on only around each contender's cycled calls (the driver's loop, measur
 8. [Scene cost](#scene-cost)
 9. [Method](#method)
 10. [Big worlds](#big-worlds) (its own command: `scripts/bench --big`)
+11. [Solver over seeds](#solver-over-seeds) (its own command: `scripts/solver_seeds`)
 
 ## Targets
 
@@ -822,12 +823,15 @@ how far anything still moved while measured.
 """
     # The "Big worlds" section comes from its own command (scripts/bench --big, bench/big_report.py):
     # kept as it is.
+    # So does "Solver over seeds" (scripts/solver_seeds, scripts/solver_seeds_report.py).
     path = os.path.join(args.docs, "benchmarks.md")
-    big_begin, big_end = "<!-- big-worlds: begin", "<!-- big-worlds: end -->"
+    kept_blocks = [("<!-- big-worlds: begin", "<!-- big-worlds: end -->"),
+                   ("<!-- solver-seeds: begin", "<!-- solver-seeds: end -->")]
     if os.path.exists(path):
         old = open(path).read()
-        if big_begin in old and big_end in old:
-            doc = doc.rstrip("\n") + "\n\n" + old[old.index(big_begin):old.index(big_end) + len(big_end)] + "\n"
+        for begin, end in kept_blocks:
+            if begin in old and end in old:
+                doc = doc.rstrip("\n") + "\n\n" + old[old.index(begin):old.index(end) + len(end)] + "\n"
     with open(path, "w") as f:
         f.write(doc)
 

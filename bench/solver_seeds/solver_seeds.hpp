@@ -1,0 +1,150 @@
+// The solver benchmark over seeds (issue 22, item 1): scenes that stress ODE's solvers (stacks,
+// heavy on light, a pyramid, a brick wall, thin plates, hull stacks, composites, a 1000-box pile,
+// card houses), each run under dWorldQuickStep (10, 20, 50 iterations) and dWorldStep over many
+// seeds (dRandSetSeed plus a small seeded jitter of the start poses, the same for every
+// contender), with gdcontact, ODE's own colliders on dConvex shapes and ODE on dBox shapes side by
+// side. Per run: whether it failed (the limits of failureLimits()), drift, contacts per step,
+// collision and solver time per step, when every body fell asleep, ODE's messages. Besides, the
+// cost of one step on identical body states (measureCost), which free-running worlds cannot give.
+//
+// The worlds are built by the scene library of samples/scenes (gdc::scenes::Scene: bodies of convex
+// parts, dBox or dConvex, mass properties); the collision pass and the step are this file's own, so
+// that their times hold nothing but collision and solver. Requires dInitODE2() first.
+#pragma once
+
+#include <gdcontact/settings.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace gdc::solver_seeds {
+
+// ---- contenders ----------------------------------------------------------------------------------
+enum class ColliderKind {
+    Gdcontact,  ///< gdc::ode::collide in the near callback, explicit settings; boxes as dBox geoms
+    OdeBox,     ///< ODE's own colliders, boxes as dBox (dBoxBox, dBoxPlane); other hulls as dConvex
+    OdeConvex,  ///< ODE's own colliders, every shape a dConvex (libccd's one-point convex collider)
+};
+
+struct Contender {
+    std::string name;  ///< "gdc", "ode-box", "ode-convex", or e.g. "gdc:maxContacts=4"
+    ColliderKind kind = ColliderKind::Gdcontact;
+    gdc::Settings settings;  ///< gdcontact's settings (Gdcontact only)
+};
+
+/// "gdc", "ode-box", "ode-convex", or "gdc:NAME=VALUE[,NAME=VALUE...]" (settings variants, each
+/// field by its name in gdc::Settings). Throws std::invalid_argument naming what is wrong.
+Contender parseContender(const std::string& spec);
+
+/// Sets the gdc::Settings field called `name` from `value` ("1e-6", "4", "true", "SeparatingAxis").
+/// Every field of gdc::Settings is here: a new field needs one line. Throws std::invalid_argument
+/// for an unknown name (listing the known ones) or a value that does not parse; the caller checks
+/// the whole set with gdc::validate.
+void setSetting(gdc::Settings& settings, const std::string& name, const std::string& value);
+/// The names setSetting knows, in gdc::Settings's order.
+std::vector<std::string> settingNames();
+
+// ---- steppers ------------------------------------------------------------------------------------
+struct Stepper {
+    std::string name;  ///< "quick10", "quick20", "quick50", "world"
+    bool quick = true;  ///< dWorldQuickStep (else dWorldStep)
+    int iterations = 20;
+};
+std::vector<Stepper> allSteppers();
+Stepper parseStepper(const std::string& name);  ///< throws std::invalid_argument
+
+// ---- scenes --------------------------------------------------------------------------------------
+struct SceneSpec {
+    std::string name;
+    std::string description;
+    double duration = 3.0;       ///< simulated seconds of a run
+    bool hasBoxes = true;        ///< every shape is a box: the ode-box contender applies
+    bool heap = false;           ///< bodies fall into a heap: only the heap limits apply
+    bool worldStep = true;       ///< dWorldStep is run (its step takes well under a second)
+    std::string worldSkipReason; ///< why not, when not
+    int defaultSeeds = 50;       ///< seeds of the default mode (scripts/run); the full mode runs ≥ 50 everywhere
+    int defaultWorldSeeds = 50;  ///< seeds of the default mode under dWorldStep (big islands cost seconds per run)
+};
+/// Every scene, in the report's order.
+const std::vector<SceneSpec>& sceneSpecs();
+const SceneSpec& findScene(const std::string& name);  ///< throws std::invalid_argument
+
+/// The solver every scene runs with (besides the stepper): dt, ERP, CFM (ODE's double default),
+/// friction, contacts asked per geom pair.
+struct SolverConstants {
+    static constexpr double dt = 0.01;          // s
+    static constexpr double erp = 0.2;
+    static constexpr double cfm = 1e-10;        // ODE's double-precision default
+    static constexpr double mu = 0.6;           // dContactApprox1 friction pyramid
+    static constexpr int contactsAsked = 16;    // flags & 0xffff of every collider call
+};
+
+/// The start jitter of every dynamic body, from its seed (the same for every contender).
+struct Jitter {
+    static constexpr double position = 1e-3;  // m, uniform in ±, horizontal
+    static constexpr double yaw = 0.01;       // rad, uniform in ±, about the vertical
+    static constexpr double tilt = 0.002;     // rad, uniform in ±, about x and about y
+};
+
+// ---- failure limits ------------------------------------------------------------------------------
+enum class Failure : int { None = 0, Exploded, Tunnelled, Flung, Drift, Tilt, Drop, Crashed };
+const char* failureName(Failure failure);
+/// One row per limit: its name, which scenes it applies to, and its rule (for the report).
+struct FailureLimit {
+    Failure failure;
+    const char* scenes;
+    const char* rule;
+};
+const std::vector<FailureLimit>& failureLimits();
+
+// ---- one run -------------------------------------------------------------------------------------
+struct RunOptions {
+    bool sleep = true;           ///< ODE auto-disable on, default thresholds (else off; sleep time emulated)
+    double durationScale = 1.0;  ///< multiplies every scene's duration
+};
+
+/// The outcome of one scene × stepper × contender × seed. Plain data (workers share it through memory).
+struct SeedResult {
+    int done = 0;              ///< 1 once filled in
+    int failure = 0;           ///< a Failure
+    double failTime = -1;      ///< s, when the first limit was crossed (−1: none)
+    double drift = 0;          ///< m, max over bodies of the horizontal distance from the start at the end
+    double maxTilt = 0;        ///< rad, max over bodies and steps of the turn of its up axis since the start
+    double contactsPerStep = 0;
+    double collisionMs = 0;    ///< mean per step
+    double solverMs = 0;       ///< mean per step
+    double sleepTime = -1;     ///< s, first time every body was asleep (−1: never within the run)
+    double asleepAtEnd = 0;    ///< fraction of bodies asleep at the end
+    int messages = 0;          ///< ODE messages (dMessage) during the run
+    int lcpErrors = 0;         ///< of them "LCP internal error"
+    int invalidContacts = 0;   ///< contacts dropped: zero, non-unit or NaN normal (ODE's convex collider)
+    int steps = 0;
+    int bodies = 0;
+};
+
+SeedResult runSeed(const SceneSpec& scene, const Stepper& stepper, const Contender& contender, int seed,
+                   const RunOptions& options = {});
+
+/// ODE's messages are counted by a handler this installs (dSetMessageHandler); call once after
+/// dInitODE2. Per process (each worker process counts its own).
+void installMessageCounter();
+
+// ---- cost on identical states --------------------------------------------------------------------
+struct CostResult {
+    double collisionMs = 0;  ///< mean per state, the fastest of the repetitions
+    double solverMs = 0;
+    double contacts = 0;     ///< mean contacts per state
+    int states = 0;
+};
+
+/// Runs `reference` free (seed `seed`), samples the body states at `states` times spread over the
+/// scene's duration, then for each state and each contender (interleaved, `repetitions` times)
+/// copies the state into the contender's world (positions, orientations, velocities, every body
+/// awake, dRandSetSeed(seed)) and times one collision pass and one step. Returns one result per
+/// contender, in order.
+std::vector<CostResult> measureCost(const SceneSpec& scene, const Stepper& stepper, const std::vector<Contender>& contenders,
+                                    const Contender& reference, int seed, int states, int repetitions,
+                                    const RunOptions& options = {});
+
+}  // namespace gdc::solver_seeds

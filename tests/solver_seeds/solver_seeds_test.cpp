@@ -1,0 +1,137 @@
+// The solver benchmark over seeds (issue 22): gdcontact stands in every seed where ODE's dBox
+// reference stands (a few seeds of the stacks), and the parts the benchmark's figures rest on —
+// settings by name, contenders, identical states — do what they say.
+#include "solver_seeds.hpp"
+
+#include "ode_session.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <stdexcept>
+
+namespace ss = gdc::solver_seeds;
+
+namespace {
+
+/// Runs `seeds` seeds of a scene under a stepper with gdcontact and with dBox; every seed where
+/// dBox stands, gdcontact must stand too. Returns how many seeds dBox stood in.
+int requireGdcStandsWhereDboxStands(const std::string& scene, const std::string& stepper, int seeds, double durationScale) {
+    const ss::SceneSpec& spec = ss::findScene(scene);
+    const ss::Stepper step = ss::parseStepper(stepper);
+    const ss::Contender gdc = ss::parseContender("gdc"), dbox = ss::parseContender("ode-box");
+    ss::RunOptions options;
+    options.durationScale = durationScale;
+    int referenceStood = 0;
+    for (int seed = 1; seed <= seeds; ++seed) {
+        const ss::SeedResult reference = ss::runSeed(spec, step, dbox, seed, options);
+        if (reference.failure != 0) continue;
+        ++referenceStood;
+        const ss::SeedResult result = ss::runSeed(spec, step, gdc, seed, options);
+        INFO(scene << " " << stepper << " seed " << seed << ": gdcontact " << ss::failureName(static_cast<ss::Failure>(result.failure))
+                   << " at " << result.failTime << " s, drift " << result.drift << " m");
+        CHECK(result.failure == 0);
+        CHECK(result.steps == reference.steps);
+        CHECK(result.lcpErrors == 0);
+    }
+    return referenceStood;
+}
+
+}  // namespace
+
+TEST_CASE("gdcontact stands in every seed of the 10-stack where ODE's dBox stands") {
+    gdc::testing::OdeSession session;
+    ss::installMessageCounter();
+    // 2 s of each run (half the benchmark's): where the QuickStep stack fails, it has by then.
+    CHECK(requireGdcStandsWhereDboxStands("stack10", "quick20", 4, 0.5) > 0);
+    CHECK(requireGdcStandsWhereDboxStands("stack10", "quick50", 3, 0.5) > 0);
+    CHECK(requireGdcStandsWhereDboxStands("stack10", "world", 3, 0.5) > 0);
+}
+
+TEST_CASE("gdcontact stands in every seed of heavy-on-light (1:100) and the 1:20 plates where dBox stands") {
+    gdc::testing::OdeSession session;
+    ss::installMessageCounter();
+    CHECK(requireGdcStandsWhereDboxStands("heavy100", "quick20", 4, 0.5) > 0);
+    CHECK(requireGdcStandsWhereDboxStands("heavy100", "world", 3, 0.5) > 0);
+    CHECK(requireGdcStandsWhereDboxStands("plates20", "quick50", 3, 0.5) > 0);
+}
+
+TEST_CASE("ODE's one-point convex collider lets the 10-stack fall, so the failure limits can fail") {
+    gdc::testing::OdeSession session;
+    ss::RunOptions options;
+    options.durationScale = 0.5;
+    const ss::SeedResult result = ss::runSeed(ss::findScene("stack10"), ss::parseStepper("quick20"),
+                                              ss::parseContender("ode-convex"), 1, options);
+    CHECK(result.failure != 0);
+    CHECK(result.drift > 0.1);  // m: the stack lies on the ground
+}
+
+TEST_CASE("every gdc::Settings field is set by its name, and a contender's variant by NAME=VALUE") {
+    gdc::Settings settings;
+    ss::setSetting(settings, "rayCastTolerance", "1e-8");
+    ss::setSetting(settings, "maxRayCastIterations", "12");
+    ss::setSetting(settings, "angularTolerance", "0.1");
+    ss::setSetting(settings, "margin", "0.001");
+    ss::setSetting(settings, "spanContactRegion", "true");
+    ss::setSetting(settings, "maxContacts", "4");
+    ss::setSetting(settings, "bruteForceSupportLimit", "7");
+    ss::setSetting(settings, "coplanarTolerance", "1e-5");
+    ss::setSetting(settings, "normalMethod", "SeparatingAxis");
+    ss::setSetting(settings, "manifoldReuseDistance", "0.002");
+    CHECK(settings.rayCastTolerance == 1e-8);
+    CHECK(settings.maxRayCastIterations == 12);
+    CHECK(settings.angularTolerance == 0.1);
+    CHECK(settings.margin == 0.001);
+    CHECK(settings.spanContactRegion);
+    CHECK(settings.maxContacts == 4);
+    CHECK(settings.bruteForceSupportLimit == 7);
+    CHECK(settings.coplanarTolerance == 1e-5);
+    CHECK(settings.normalMethod == gdc::NormalMethod::SeparatingAxis);
+    CHECK(settings.manifoldReuseDistance == 0.002);
+    // Every name the table knows refuses a value that does not parse (a newer field included).
+    for (const std::string& name : ss::settingNames()) {
+        INFO(name);
+        CHECK_THROWS_AS(ss::setSetting(settings, name, "not-a-value"), std::invalid_argument);
+    }
+    CHECK_THROWS_AS(ss::setSetting(settings, "maxContact", "4"), std::invalid_argument);
+    CHECK_THROWS_AS(ss::setSetting(settings, "maxContacts", "4.5"), std::invalid_argument);
+
+    const ss::Contender variant = ss::parseContender("gdc:maxContacts=3,angularTolerance=0.02");
+    CHECK(variant.kind == ss::ColliderKind::Gdcontact);
+    CHECK(variant.settings.maxContacts == 3);
+    CHECK(variant.settings.angularTolerance == 0.02);
+    CHECK(variant.name == "gdc:maxContacts=3,angularTolerance=0.02");
+    CHECK(ss::parseContender("ode-box").kind == ss::ColliderKind::OdeBox);
+    CHECK(ss::parseContender("ode-convex").kind == ss::ColliderKind::OdeConvex);
+    CHECK_THROWS_AS(ss::parseContender("gdc:maxContacts=0"), std::invalid_argument);  // gdc::validate's bounds
+    CHECK_THROWS_AS(ss::parseContender("bullet"), std::invalid_argument);
+    CHECK_THROWS_AS(ss::parseContender("gdc:maxContacts"), std::invalid_argument);
+}
+
+TEST_CASE("a run replays exactly from its seed, and another seed jitters the start") {
+    gdc::testing::OdeSession session;
+    const ss::SceneSpec& spec = ss::findScene("stack10");
+    ss::RunOptions options;
+    options.durationScale = 0.25;
+    const ss::Contender gdc = ss::parseContender("gdc");
+    const ss::SeedResult a = ss::runSeed(spec, ss::parseStepper("quick20"), gdc, 3, options);
+    const ss::SeedResult b = ss::runSeed(spec, ss::parseStepper("quick20"), gdc, 3, options);
+    const ss::SeedResult c = ss::runSeed(spec, ss::parseStepper("quick20"), gdc, 4, options);
+    CHECK(a.drift == b.drift);
+    CHECK(a.maxTilt == b.maxTilt);
+    CHECK(a.contactsPerStep == b.contactsPerStep);
+    CHECK(a.drift != c.drift);
+}
+
+TEST_CASE("identical states: two copies of a contender make the same contacts from each copied state") {
+    gdc::testing::OdeSession session;
+    const ss::Contender gdc = ss::parseContender("gdc");
+    ss::RunOptions options;
+    options.durationScale = 0.25;
+    const auto costs = ss::measureCost(ss::findScene("stack10"), ss::parseStepper("quick20"), {gdc, gdc, ss::parseContender("ode-box")},
+                                       ss::parseContender("ode-box"), 1, 3, 1, options);
+    REQUIRE(costs.size() == 3);
+    CHECK(costs[0].states == 3);
+    CHECK(costs[0].contacts > 9);  // at least one per resting pair of the 10-stack
+    CHECK(costs[0].contacts == costs[1].contacts);
+    CHECK(costs[2].contacts > 9);
+}
