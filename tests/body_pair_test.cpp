@@ -113,7 +113,7 @@ TEST_CASE("body pair: the deepest point is kept") {
     }
 }
 
-TEST_CASE("body pair: clusters by normal; opposite and tilted supports keep their own budget") {
+TEST_CASE("body pair: clusters by normal, opposite and tilted supports keep their own budget") {
     // A body clamped between two faces of another: a bottom support (normal +z) and a top one
     // (normal −z) of the same shape; and a side wall (normal +x). Each is a 4 × 4 grid.
     auto bottom = grid(4, 4, 0.1, 0.0);
