@@ -36,6 +36,10 @@ void validate(const Settings& settings) {
     requireWithin("contactOrder", order, static_cast<int>(ContactOrder::DeepestLast),
                   static_cast<int>(ContactOrder::DeepestFirst), " (a ContactOrder value)");
     requireWithin("reductionHysteresis", settings.reductionHysteresis, 0.0, 0.1, " (relative)");
+    // Per-body-pair contact budget
+    requireWithin("maxBodyPairContacts", settings.maxBodyPairContacts, 0, static_cast<int>(kMaxManifoldPoints),
+                  " contacts (0: off)");
+    requireWithin("bodyPairNormalTolerance", settings.bodyPairNormalTolerance, 0.0, 0.5, " rad");
 }
 
 // Every field: a field added to Settings must be added here (tests/pair_cache_test.cpp changes
@@ -46,7 +50,10 @@ bool operator==(const Settings& a, const Settings& b) {
            a.spanContactRegion == b.spanContactRegion && a.maxContacts == b.maxContacts &&
            a.bruteForceSupportLimit == b.bruteForceSupportLimit && a.coplanarTolerance == b.coplanarTolerance &&
            a.normalMethod == b.normalMethod && a.manifoldReuseDistance == b.manifoldReuseDistance &&
-           a.contactOrder == b.contactOrder && a.reductionHysteresis == b.reductionHysteresis;
+           a.contactOrder == b.contactOrder && a.reductionHysteresis == b.reductionHysteresis &&
+           // Per-body-pair contact budget
+           a.maxBodyPairContacts == b.maxBodyPairContacts &&
+           a.bodyPairNormalTolerance == b.bodyPairNormalTolerance;
 }
 
 }  // namespace gdc

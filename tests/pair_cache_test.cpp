@@ -197,11 +197,13 @@ TEST_CASE("pair cache: a cache passed with other shapes, settings or half-space 
                 case 8: s.normalMethod = NormalMethod::SeparatingAxis; break;
                 case 9: s.manifoldReuseDistance = 1e-3; break;
                 case 10: s.contactOrder = s.contactOrder == ContactOrder::DeepestLast ? ContactOrder::DeepestFirst : ContactOrder::DeepestLast; break;
-                default: s.reductionHysteresis *= 2; break;
+                case 11: s.reductionHysteresis *= 2; break;
+                case 12: s.maxBodyPairContacts = 0; break;
+                default: s.bodyPairNormalTolerance *= 2; break;
             }
             return s;
         };
-        for (int field = 0; field <= 11; ++field) {
+        for (int field = 0; field <= 13; ++field) {
             INFO("field " << field);
             CHECK(changed(field) != Settings{});
             collide(box, poseA, *other, poseB, changed(field), cache);

@@ -13,6 +13,7 @@
 #include <cstring>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_map>
@@ -95,6 +96,9 @@ const std::vector<SettingField>& settingFields() {
          }},
         {"reductionHysteresis", [](gdc::Settings& s, const std::string& v) { s.reductionHysteresis = parseDouble("reductionHysteresis", v); }},
         // New fields of gdc::Settings: one line each here.
+        // Per-body-pair contact budget
+        {"maxBodyPairContacts", [](gdc::Settings& s, const std::string& v) { s.maxBodyPairContacts = parseInt("maxBodyPairContacts", v); }},
+        {"bodyPairNormalTolerance", [](gdc::Settings& s, const std::string& v) { s.bodyPairNormalTolerance = parseDouble("bodyPairNormalTolerance", v); }},
     };
     return fields;
 }
@@ -456,24 +460,16 @@ void nearCallback(void* data, dGeomID o1, dGeomID o2) {
     else w.pairs.push_back({b->second, a->second, o2, o1});
 }
 
-/// One collision pass: every pair of the broad phase through the contender's collider, a contact
-/// joint per valid contact. Returns the contacts made.
-int collideAll(World& w, const Contender& contender) {
-    w.pairs.clear();
-    dSpaceCollide(w.scene->space(), &w, &nearCallback);
-    std::sort(w.pairs.begin(), w.pairs.end());
-    dWorldID world = w.scene->world();
-    int made = 0;
-    for (const World::Pair& pair : w.pairs) {
-        dBodyID b1 = dGeomGetBody(pair.g1), b2 = dGeomGetBody(pair.g2);
-        if (b1 == b2) continue;  // parts of one composite, or two static geoms
-        if (b1 && b2 && dAreConnectedExcluding(b1, b2, dJointTypeContact)) continue;
-        const int count = contender.kind == ColliderKind::Gdcontact
-                              ? gdc::ode::collide(pair.g1, pair.g2, SolverConstants::contactsAsked, w.buffer.data(),
-                                                  sizeof(dContactGeom), contender.settings)
-                              : dCollide(pair.g1, pair.g2, SolverConstants::contactsAsked, w.buffer.data(), sizeof(dContactGeom));
+/// The contact joints of one geom pair's contacts (each valid one), counted in `made`.
+struct JointMaker {
+    World* w;
+    int made;
+    static void handler(void* data, dGeomID g1, dGeomID g2, dContactGeom* contacts, int count) {
+        JointMaker& maker = *static_cast<JointMaker*>(data);
+        World& w = *maker.w;
+        dBodyID b1 = dGeomGetBody(g1), b2 = dGeomGetBody(g2);
         for (int i = 0; i < count; ++i) {
-            const dContactGeom& c = w.buffer[i];
+            const dContactGeom& c = contacts[i];
             const double length = std::sqrt(c.normal[0] * c.normal[0] + c.normal[1] * c.normal[1] + c.normal[2] * c.normal[2]);
             // ODE's convex collider gives a zero normal for exactly touching shapes (ODE would abort).
             if (!std::isfinite(length) || std::abs(length - 1.0) > 1e-6 || !std::isfinite(c.depth) ||
@@ -485,14 +481,40 @@ int collideAll(World& w, const Contender& contender) {
             contact.surface.mode = dContactApprox1;
             contact.surface.mu = SolverConstants::mu;
             contact.geom = c;
-            contact.geom.g1 = pair.g1;
-            contact.geom.g2 = pair.g2;
-            dJointID joint = dJointCreateContact(world, w.contacts, &contact);
+            contact.geom.g1 = g1;
+            contact.geom.g2 = g2;
+            dJointID joint = dJointCreateContact(w.scene->world(), w.contacts, &contact);
             dJointAttach(joint, b1, b2);
-            ++made;
+            ++maker.made;
         }
     }
-    return made;
+};
+
+/// One collision pass: every pair of the broad phase through the contender's collider, a contact
+/// joint per valid contact. gdcontact's contacts go through gdc::ode::BodyPairContacts, so that
+/// Settings::maxBodyPairContacts applies where bodies touch through several geom pairs (as
+/// gdc::ode::spaceCollide applies it); pairs are added in creation order. Returns the contacts made.
+int collideAll(World& w, const Contender& contender) {
+    w.pairs.clear();
+    dSpaceCollide(w.scene->space(), &w, &nearCallback);
+    std::sort(w.pairs.begin(), w.pairs.end());
+    JointMaker maker{&w, 0};
+    const bool gdcontact = contender.kind == ColliderKind::Gdcontact;
+    std::optional<gdc::ode::BodyPairContacts> collected;
+    if (gdcontact) collected.emplace(contender.settings);
+    for (const World::Pair& pair : w.pairs) {
+        dBodyID b1 = dGeomGetBody(pair.g1), b2 = dGeomGetBody(pair.g2);
+        if (b1 == b2) continue;  // parts of one composite, or two static geoms
+        if (b1 && b2 && dAreConnectedExcluding(b1, b2, dJointTypeContact)) continue;
+        const int count = gdcontact
+                              ? gdc::ode::collide(pair.g1, pair.g2, SolverConstants::contactsAsked, w.buffer.data(),
+                                                  sizeof(dContactGeom), contender.settings)
+                              : dCollide(pair.g1, pair.g2, SolverConstants::contactsAsked, w.buffer.data(), sizeof(dContactGeom));
+        if (gdcontact) collected->add(pair.g1, pair.g2, w.buffer.data(), count);
+        else if (count > 0) JointMaker::handler(&maker, pair.g1, pair.g2, w.buffer.data(), count);
+    }
+    if (gdcontact) collected->deliver(&maker, &JointMaker::handler);
+    return maker.made;
 }
 
 void stepWorld(World& w, const Stepper& stepper) {

@@ -67,6 +67,12 @@ typedef struct gdcSettings {
     /* The contact set the solver gets (its budget is maxContacts) */
     int contactOrder;
     double reductionHysteresis;
+    /* ---- Per-body-pair contact budget (gdc::Settings, include/gdcontact/body_pair.hpp) ----
+     * maxBodyPairContacts (0..16; 0: off): most contacts kept between two bodies touching through
+     * several pairs of geoms, per contact direction; bodyPairNormalTolerance (radians, 0..0.5):
+     * normals within it form one direction. gdcSpaceCollide applies them. */
+    int maxBodyPairContacts;
+    double bodyPairNormalTolerance;
 } gdcSettings;
 
 /* Fills *settings with gdcontact's defaults (those of gdc::Settings). Does nothing for NULL. */

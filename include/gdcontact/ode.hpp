@@ -5,6 +5,7 @@
 // convex–convex, box–plane and convex–plane pair; other pairs stay with ODE. See docs/ode.md.
 #pragma once
 
+#include <gdcontact/body_pair.hpp>
 #include <gdcontact/collide.hpp>
 #include <gdcontact/polytope.hpp>
 #include <gdcontact/settings.hpp>
@@ -15,6 +16,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 namespace gdc::ode {
 
@@ -97,7 +99,12 @@ using ContactHandler = void (*)(void* data, dGeomID o1, dGeomID o2, dContactGeom
 /// count)` runs on the calling thread for each pair with at least one contact, in the broad phase's
 /// order, so its output never depends on the thread count. contacts[k] are what
 /// dCollide(o1, o2, maxContactsPerPair, contacts, sizeof(dContactGeom)) gives after install()
-/// (gdcontact's pairs return at most min(maxContactsPerPair, Settings::maxContacts) contacts).
+/// (gdcontact's pairs return at most min(maxContactsPerPair, Settings::maxContacts) contacts) —
+/// except where two bodies touch through more than one geom pair (composites) and the installed
+/// Settings::maxBodyPairContacts is not 0: then the contacts of all those pairs are reduced
+/// together by reduceBodyPair (in the broad phase's order of the pairs), and the handler is still
+/// called once per geom pair, with that pair's surviving contacts (a pair none of whose contacts
+/// survived is not reported), so a handler written per geom pair keeps working.
 /// Throws InvalidInput for a null or non-space `space`, a null handler, or maxContactsPerPair
 /// outside 1..65535; an exception from the handler propagates (the remaining pairs are dropped).
 /// The geoms may not be moved or destroyed while it runs (the handler may create joints). Calls on
@@ -109,6 +116,72 @@ GDCONTACT_API void spaceCollide(dSpaceID space, int maxContactsPerPair, void* da
 /// 1 serial, on the calling thread; n: the calling thread and n − 1 pool threads. Throws
 /// InvalidInput outside 0..256. Takes effect at the next spaceCollide call.
 GDCONTACT_API void setThreadCount(int threads);
+
+}  // namespace gdc::ode
+
+// ---- The per-body-pair contact budget (src/ode/body_pair.cpp, docs/ode.md) ---------------------
+namespace gdc::ode {
+
+/// Reduces the contacts between two bodies made of several geoms (composites) to the body-pair
+/// budget: settings.maxBodyPairContacts per contact direction (gdc::reduceBodyPairContacts:
+/// clustered by normal, near-duplicates merged, the deepest kept, the widest support, the carried
+/// body's centre of mass — dBodyGetPosition — kept over it; the carried body is the one the
+/// normal pushes against its world's gravity). `contacts` (count of them at stride `skip`) are
+/// those of every geom pair between b1 and b2 a near callback collected in one step, each as
+/// dCollide gave it (g1, g2 name the pair's geoms; normal from g2 into g1; either geom order).
+/// b1 or b2 may be 0 (the static world), not both. The survivors are moved to the front, in
+/// their order, unchanged (each keeps its own geoms, normal and depth); returns their count.
+/// Contacts that all come from one geom pair are returned as they are (that pair's own
+/// reduction, settings.maxContacts, applies), as is everything with maxBodyPairContacts == 0.
+/// The same contacts, mirrored (b1, b2 swapped, or each pair's geoms swapped), give the same
+/// survivors. Throws InvalidInput for bad settings (gdc::validate), count < 0, a null array,
+/// skip < sizeof(dContactGeom), b1 == b2, or a contact whose geoms are not one on b1 and one on
+/// b2 (or whose normal is not unit, or a field not finite).
+///
+///     // near callback: collect; after dSpaceCollide, per pair of bodies:
+///     int kept = gdc::ode::reduceBodyPair(b1, b2, pairContacts.data(), n, sizeof(dContactGeom), settings);
+///     for (int i = 0; i < kept; ++i) { ... dJointCreateContact(world, group, &contact); ... }
+GDCONTACT_API int reduceBodyPair(dBodyID b1, dBodyID b2, dContactGeom* contacts, int count, int skip,
+                                 const Settings& settings);
+
+/// Collects one step's contacts from a near callback, then hands them over with the body-pair
+/// budget applied — what spaceCollide does, for a program that keeps its own near callback:
+///
+///     gdc::ode::BodyPairContacts collected(settings);     // kept across steps: reuses its memory
+///     // near callback:  n = dCollide(o1, o2, 8, contacts, sizeof(dContactGeom));
+///     //                 collected.add(o1, o2, contacts, n);
+///     dSpaceCollide(space, &collected, &nearCallback);
+///     collected.deliver(data, &handler);                    // handler as spaceCollide's; then cleared
+///
+/// deliver() reduces the contacts of each pair of bodies that touch through several geom pairs
+/// (reduceBodyPair, in the order the pairs were added) and calls `handler(data, o1, o2, contacts,
+/// count)` once per added geom pair with its surviving contacts (none survived, or none added: not
+/// called), in the order of add(). So the output depends only on that order. Pairs of two static
+/// geoms are handed over unchanged. Not thread-safe: one collector per thread.
+class GDCONTACT_API BodyPairContacts {
+public:
+    /// Throws InvalidInput for settings gdc::validate refuses.
+    explicit BodyPairContacts(const Settings& settings = {});
+    /// One geom pair's contacts (`count` at `contacts`, stride sizeof(dContactGeom)), as dCollide
+    /// gave them for (o1, o2). Throws InvalidInput for count < 0 or null contacts with count > 0.
+    void add(dGeomID o1, dGeomID o2, const dContactGeom* contacts, int count);
+    /// Reduces, hands every pair over, and clears (also when the handler throws).
+    void deliver(void* data, ContactHandler handler);
+    /// Forgets what was added.
+    void clear();
+
+private:
+    struct Pair {
+        dGeomID o1, o2;
+        std::size_t offset;
+        int count;
+    };
+    Settings settings_;
+    std::vector<Pair> pairs_;
+    std::vector<dContactGeom> contacts_;
+    std::vector<dContactGeom> gathered_;
+    std::vector<int> done_;
+};
 
 }  // namespace gdc::ode
 

@@ -143,6 +143,27 @@ struct Settings {
     /// kept set up to this fraction less deep or less wide than the best; 0: always the strict
     /// best. Bounds [0, 0.1]: above 10 % the first point may be visibly shallower than the deepest.
     double reductionHysteresis = 0.01;
+    // ---- Per-body-pair contact budget (composites; include/gdcontact/body_pair.hpp) ----
+
+    /// Body-pair reduction — most contacts kept between two bodies for each contact direction
+    /// (count; 0: off), where the bodies touch through more than one pair of their geoms (bodies
+    /// made of several convex parts). The contacts of all those pairs are clustered by normal
+    /// (bodyPairNormalTolerance), near-duplicates merged, and each cluster reduced to this many:
+    /// the deepest, the widest support polygon, the carried body's centre of mass kept over it.
+    /// Fewer: fewer rows for the solver (dWorldStep's cost grows steeply with them, and redundant
+    /// coplanar rows make its LCP nearly singular: "LCP internal error"), a coarser support
+    /// polygon. 0 hands the solver every contact of every pair of parts. gdc::ode::spaceCollide and
+    /// gdc::ode::reduceBodyPair apply it; a single pair of geoms keeps its own maxContacts.
+    /// Bounds [0, 16]: 16 is the size of a Manifold; 4 (the default) is what Jolt, bepuphysics,
+    /// Bullet and PhysX keep per manifold, and 3 is the fewest that can hold a centre of mass.
+    int maxBodyPairContacts = 4;
+
+    /// Body-pair reduction — contacts whose normals differ by at most this angle (radians) form
+    /// one cluster, reduced together. Larger: supports at a small angle to each other are merged
+    /// (fewer rows, each point keeps its own normal); smaller: nearly parallel supports each keep
+    /// their own budget. Bounds [0, 0.5] rad: 0 clusters only identical normals; above 0.5 rad
+    /// (≈ 29°) distinct supports (a body in a V-groove) would share one budget.
+    double bodyPairNormalTolerance = 0.0873;  // ≈ 5°
 };
 
 /// Whether two settings are the same in every field (a PairCache answers only for the settings it

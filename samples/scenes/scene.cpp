@@ -155,6 +155,16 @@ struct Scene::Impl {
     };
     std::vector<TouchingPair> touching;
     std::vector<dContactGeom> wholeStepContacts;
+    // The gdcontact method with a body-pair budget (Settings::maxBodyPairContacts): each pair's
+    // contacts, in the pairs' order, held until every pair is collided, so that the pairs between
+    // the same two bodies are reduced together (gdc::ode::reduceBodyPair) before joints are made.
+    struct HeldPair {
+        dGeomID geom1, geom2;
+        std::size_t offset;  // into heldContacts
+        int count;
+    };
+    std::vector<HeldPair> held;
+    std::vector<dContactGeom> heldContacts;
 };
 
 Scene::Scene(std::string name, const SceneOptions& options, const SolverSettings& defaults)
@@ -430,7 +440,25 @@ void Scene::collidePair(dGeomID o1, dGeomID o2) {
             break;
         }
     }
+    if (method_ == Method::Gdcontact && contactSettings_.maxBodyPairContacts > 0) {
+        impl_->held.push_back({o1, o2, impl_->heldContacts.size(), count});
+        impl_->heldContacts.insert(impl_->heldContacts.end(), out, out + count);
+        return;
+    }
     addContactJoints(o1, o2, out, count);
+}
+
+void Scene::addHeldContacts() {
+    // As a user's own near callback would apply the body-pair budget: every pair's contacts added
+    // to a gdc::ode::BodyPairContacts in the pairs' (creation) order, then delivered — the pairs
+    // between the same two bodies reduced together, each pair handed its survivors, in that order.
+    if (impl_->held.empty()) return;
+    gdc::ode::BodyPairContacts collected(contactSettings_);
+    for (const Impl::HeldPair& pair : impl_->held)
+        collected.add(pair.geom1, pair.geom2, impl_->heldContacts.data() + pair.offset, pair.count);
+    collected.deliver(this, [](void* data, dGeomID o1, dGeomID o2, dContactGeom* contacts, int count) {
+        static_cast<Scene*>(data)->addContactJoints(o1, o2, contacts, count);
+    });
 }
 
 void Scene::addContactJoints(dGeomID o1, dGeomID o2, const dContactGeom* out, int count) {
@@ -515,9 +543,12 @@ void Scene::step() {
         collideWholeStep();
     } else {
         impl_->pairs.clear();
+        impl_->held.clear();
+        impl_->heldContacts.clear();
         dSpaceCollide(space_, this, &Scene::nearCallback);
         std::sort(impl_->pairs.begin(), impl_->pairs.end());
         for (const Impl::Pair& pair : impl_->pairs) collidePair(pair.geom1, pair.geom2);
+        addHeldContacts();
     }
     if (wholeStepCollision_) impl_->stepPenetration = groundPenetration();
     if (method_ == Method::Tracking) {

@@ -258,6 +258,7 @@ private:
     static void nearCallback(void* data, dGeomID o1, dGeomID o2);
     void collidePair(dGeomID o1, dGeomID o2);
     void addContactJoints(dGeomID o1, dGeomID o2, const dContactGeom* contacts, int count);
+    void addHeldContacts();
     void collideWholeStep();
     static void wholeStepHandler(void* data, dGeomID o1, dGeomID o2, dContactGeom* contacts, int count);
     double groundPenetration() const;

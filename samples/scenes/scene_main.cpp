@@ -2,11 +2,13 @@
 //   box_drop --method gdc|tracking|ode [--steps N] [--dt S] [--stepper world|quick] [--iterations N]
 //            [--erp X] [--cfm X] [--mu X] [--contacts N] [--surface-layer M] [--convex] [--no-script]
 //            [--csv FILE] [--summary FILE] [--bodies N (big_world)] [--threads N (big_world)]
+//            [--body-pair-contacts N (gdc)]
 // Prints one line: the quality measures after rest (max/mean), timings, and the scene's verdict.
 #include "scene.hpp"
 
 #include <gdcontact/ode.hpp>
 
+#include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -28,14 +30,16 @@ void usage(std::ostream& out) {
     out << "usage: " << GDC_SCENE_NAME
         << " [--method gdc|tracking|ode] [--steps N] [--dt S] [--stepper world|quick] [--iterations N]\n"
            "       [--erp X] [--cfm X] [--mu X] [--contacts N] [--surface-layer M] [--convex] [--no-script]\n"
-           "       [--csv FILE] [--summary FILE] [--bodies N] [--threads N]\n"
+           "       [--csv FILE] [--summary FILE] [--bodies N] [--threads N] [--body-pair-contacts N]\n"
            "  --method     contact generation: gdc (gdcontact), tracking (persistent manifold), ode (ODE's own)\n"
            "  --steps      number of steps (default: the scene's full duration)\n"
            "  --convex     box-shaped bodies as dConvex instead of dBox\n"
            "  --no-script  no scripted user (no builder, remover or push)\n"
            "  --bodies     big_world: number of bodies (default 2000)\n"
            "  --threads    big_world: gdc::ode::setThreadCount (default 0, one per hardware thread)\n"
-           "  --csv        per-step measures; --summary: the summary as JSON\n";
+           "  --body-pair-contacts  gdc: Settings::maxBodyPairContacts (0: off; default 4)\n"
+           "  --csv        per-step measures; --summary: the summary as JSON\n"
+           "ODE's messages (dMessage, e.g. \"LCP internal error\") are printed to stderr and counted.\n";
 }
 
 double parseNumber(const std::string& option, const char* text) {
@@ -63,6 +67,7 @@ int main(int argc, char** argv) {
     std::string csvPath, summaryPath;
     long steps = -1;
     int threads = 0;
+    int bodyPairContacts = -1;  // -1: the scene's own settings
     try {
         for (int i = 1; i < argc; ++i) {
             const std::string option = argv[i];
@@ -117,6 +122,10 @@ int main(int argc, char** argv) {
                 const double n = parseNumber(option, value());
                 if (!(n >= 0 && n <= 256)) throw std::invalid_argument("--threads must be in 0..256");
                 threads = static_cast<int>(n);
+            } else if (option == "--body-pair-contacts") {
+                const double n = parseNumber(option, value());
+                if (!(n >= 0 && n <= 16)) throw std::invalid_argument("--body-pair-contacts must be in 0..16");
+                bodyPairContacts = static_cast<int>(n);
             } else if (option == "--convex") {
                 options.convexBoxes = true;
             } else if (option == "--no-script") {
@@ -136,6 +145,15 @@ int main(int argc, char** argv) {
     }
 
     dInitODE2(0);
+    // ODE's messages (its Dantzig LCP's "LCP internal error" among them) still reach stderr, and are
+    // counted for the summary.
+    static int odeMessages = 0;
+    dSetMessageHandler([](int number, const char* message, va_list arguments) {
+        ++odeMessages;
+        std::fprintf(stderr, "ODE Message %d: ", number);
+        std::vfprintf(stderr, message, arguments);
+        std::fprintf(stderr, "\n");
+    });
     int status = 0;
     try {
         gdc::ode::setThreadCount(threads);
@@ -143,23 +161,34 @@ int main(int argc, char** argv) {
         SolverSettings settings = scene->solver();
         for (const auto& change : solverChanges) change(settings);
         scene->setSolver(settings);  // throws for out-of-range values
+        if (bodyPairContacts >= 0) {
+            gdc::Settings contactSettings = scene->contactSettings();
+            contactSettings.maxBodyPairContacts = bodyPairContacts;
+            scene->setContactSettings(contactSettings);
+            // big_world's whole-step collision (spaceCollide) uses install()'s settings; installing
+            // is harmless for the gdc method (it calls gdcontact directly) and would reroute the others.
+            if (options.method == gdc::scenes::Method::Gdcontact) gdc::ode::install(contactSettings);
+        }
         const SolverSettings& used = scene->solver();
         if (steps < 0) steps = static_cast<long>(scene->duration() / used.dt + 0.5);
         for (long i = 0; i < steps && !scene->exploded(); ++i) scene->step();
 
         const gdc::scenes::Summary s = scene->summary();
+        double contactsPerStep = 0.0;
+        for (const gdc::scenes::Measures& m : scene->history()) contactsPerStep += m.contacts;
+        if (!scene->history().empty()) contactsPerStep /= static_cast<double>(scene->history().size());
         const gdc::scenes::Outcome outcome = scene->outcome();
         const char* method = gdc::scenes::methodName(scene->method());
         const char* shapes = options.convexBoxes ? "convex" : "box";
         std::printf("%s method=%s boxes=%s stepper=%s iterations=%d dt=%g steps=%ld | after rest (%d steps): "
                     "penetration max %.3g mean %.3g m, contact depth max %.3g m, alignment max %.3g mean %.3g rad, "
                     "drift %.3g m, twist %.3g rad, sag %.3g m, oscillation %.3g m/s | collision %.3g ms, "
-                    "solver %.3g ms per step | %s: %s\n",
+                    "solver %.3g ms per step, %.1f contacts per step, %d ODE messages | %s: %s\n",
                     scene->name().c_str(), method, shapes, gdc::scenes::stepperName(used.stepper), used.iterations,
                     used.dt, static_cast<long>(scene->stepCount()), s.samples, s.maxPenetration, s.meanPenetration,
                     s.maxContactPenetration, s.maxAlignment, s.meanAlignment, s.maxDrift, s.maxTwist, s.maxSag,
-                    s.oscillation, 1e3 * s.meanCollisionSeconds, 1e3 * s.meanSolverSeconds,
-                    outcome.success ? "PASS" : "FAIL", outcome.text.c_str());
+                    s.oscillation, 1e3 * s.meanCollisionSeconds, 1e3 * s.meanSolverSeconds, contactsPerStep,
+                    odeMessages, outcome.success ? "PASS" : "FAIL", outcome.text.c_str());
         if (!csvPath.empty()) scene->writeCsv(csvPath);
         if (!summaryPath.empty()) {
             std::ofstream json(summaryPath);
@@ -177,6 +206,7 @@ int main(int argc, char** argv) {
                  << ", \"max_sag\": " << s.maxSag << ", \"oscillation\": " << s.oscillation
                  << ", \"collision_ms\": " << 1e3 * s.meanCollisionSeconds
                  << ", \"solver_ms\": " << 1e3 * s.meanSolverSeconds
+                 << ", \"contacts_per_step\": " << contactsPerStep << ", \"ode_messages\": " << odeMessages
                  << ", \"success\": " << (outcome.success ? "true" : "false")
                  << ", \"outcome\": " << jsonString(outcome.text) << ", \"values\": {";
             for (std::size_t i = 0; i < outcome.values.size(); ++i)

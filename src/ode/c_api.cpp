@@ -73,6 +73,9 @@ gdc::Settings toSettings(const gdcSettings& in) {
     out.manifoldReuseDistance = in.manifoldReuseDistance;
     out.contactOrder = static_cast<gdc::ContactOrder>(in.contactOrder);  // checked by gdc::validate
     out.reductionHysteresis = in.reductionHysteresis;
+    // Per-body-pair contact budget
+    out.maxBodyPairContacts = in.maxBodyPairContacts;
+    out.bodyPairNormalTolerance = in.bodyPairNormalTolerance;
     return out;  // the ranges are checked by gdc::validate (in gdc::ode::install), which names the field
 }
 
@@ -95,6 +98,9 @@ void gdcDefaultSettings(gdcSettings* settings) noexcept {
     settings->manifoldReuseDistance = defaults.manifoldReuseDistance;
     settings->contactOrder = static_cast<int>(defaults.contactOrder);
     settings->reductionHysteresis = defaults.reductionHysteresis;
+    // Per-body-pair contact budget
+    settings->maxBodyPairContacts = defaults.maxBodyPairContacts;
+    settings->bodyPairNormalTolerance = defaults.bodyPairNormalTolerance;
 }
 
 int gdcInstall(const gdcSettings* settings) noexcept {

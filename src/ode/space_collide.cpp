@@ -21,6 +21,7 @@
 // instrumented. The pool's threads sleep on a condition variable between calls.
 #include <gdcontact/ode.hpp>
 
+#include "body_pair.hpp"
 #include "pair_cache_table.hpp"
 #include "space_collide_profile.hpp"
 #include "state.hpp"
@@ -37,6 +38,8 @@
 #include <new>
 #include <string>
 #include <thread>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace gdc::ode {
@@ -254,6 +257,61 @@ struct Scratch {
     } packed;
     std::size_t gdcontactPairs = 0;
     bool inUse = false;
+
+    // The per-body-pair budget (Settings::maxBodyPairContacts): pairs between the same two bodies,
+    // linked in the broad phase's order. For pair i: the first pair of its body pair when that body
+    // pair has several geom pairs (else −1), the next pair of the same body pair (−1: the last),
+    // and its contacts' count after the reduction (−1: not reduced yet).
+    struct BodyPairLinks {
+        int first, last, size;
+    };
+    struct BodyPairHash {
+        std::size_t operator()(const std::pair<dBodyID, dBodyID>& key) const noexcept {
+            const auto a = reinterpret_cast<std::uintptr_t>(key.first), b = reinterpret_cast<std::uintptr_t>(key.second);
+            return std::hash<std::uintptr_t>()(a * 0x9E3779B97F4A7C15ull ^ b);
+        }
+    };
+    std::unordered_map<std::pair<dBodyID, dBodyID>, BodyPairLinks, BodyPairHash> bodyPairs;
+    std::vector<int> bodyPairHead, bodyPairNext, reducedCount;
+    std::vector<dContactGeom> bodyPairContacts;  // one body pair's contacts, gathered
+    std::vector<int> bodyPairOwner;               // which pair each gathered contact came from
+    std::vector<BodyPairContact> bodyPairPoints;
+    std::vector<int> bodyPairKept;
+
+    // Links the pairs of each body pair; false when no body pair has several geom pairs.
+    bool linkBodyPairs() {
+        const std::size_t n = pairs.size();
+        bodyPairs.clear();
+        bodyPairHead.assign(n, -1);
+        bodyPairNext.assign(n, -1);
+        reducedCount.assign(n, -1);
+        bool any = false;
+        // Two bodies of one geom each touch through one pair at most: most pairs of a pile skip
+        // the table (a body against the static world may touch several static geoms).
+        auto single = [](dBodyID body) {
+            const dGeomID first = body ? dBodyGetFirstGeom(body) : nullptr;
+            return first && !dBodyGetNextGeom(first);
+        };
+        for (std::size_t i = 0; i < n; ++i) {
+            dBodyID b1 = dGeomGetBody(pairs[i].o1), b2 = dGeomGetBody(pairs[i].o2);
+            if (b1 == b2) continue;  // static geoms (ODE lists no two geoms of one body)
+            if (single(b1) && single(b2)) continue;
+            if (std::less<dBodyID>()(b2, b1)) std::swap(b1, b2);
+            const int index = static_cast<int>(i);
+            auto [entry, created] = bodyPairs.try_emplace({b1, b2}, BodyPairLinks{index, index, 1});
+            if (created) continue;
+            bodyPairNext[static_cast<std::size_t>(entry->second.last)] = index;
+            entry->second.last = index;
+            ++entry->second.size;
+            any = true;
+        }
+        if (!any) return false;
+        for (const auto& entry : bodyPairs)
+            if (entry.second.size > 1)
+                for (int i = entry.second.first; i >= 0; i = bodyPairNext[static_cast<std::size_t>(i)])
+                    bodyPairHead[static_cast<std::size_t>(i)] = entry.second.first;
+        return true;
+    }
 
     // The slot of gdcontact pair `index`, its block made ready for `slotSize` contacts a pair.
     Slot& slotFor(std::size_t index, int slotSize, dContactGeom*& contacts) {
@@ -500,26 +558,75 @@ void spaceCollide(dSpaceID space, int maxContactsPerPair, void* data, ContactHan
     //    the next chunk of pairs (or, when none is left, wait for the pool thread colliding it), so
     //    the handler's work overlaps the pool's instead of following it.
     std::int64_t waitNanos = 0;
-    try {
-        for (const Pair& pair : scratch.pairs) {
-            dContactGeom* contacts;
+    // A pair's contacts once collided (waiting for, or taking part in, the narrow phase).
+    auto collided = [&](const Pair& pair, int& count) -> dContactGeom* {
+        if (!pair.gdcontact) {
+            count = pair.count;
+            return scratch.packed.data.get() + pair.index;
+        }
+        std::size_t offset;
+        SlotBlock& block = scratch.blocks[blockOf(pair.index, offset)];
+        const Slot& slot = block.slots[offset];
+        while ((count = slot.count.load(std::memory_order_acquire)) < 0) {
+            if (job.workChunk()) continue;
+            const auto waitStart = profile ? ProfileClock::now() : ProfileClock::time_point{};
+            for (int spins = 0; (count = slot.count.load(std::memory_order_acquire)) < 0; ++spins)
+                if (spins >= 64) std::this_thread::yield();
+            if (profile) waitNanos += nanosSince(waitStart);
+        }
+        return block.contacts.get() + offset * static_cast<std::size_t>(slotSize);
+    };
+    // The per-body-pair budget: where two bodies touch through several geom pairs, all their
+    // contacts are reduced together (on this thread, in the broad phase's order of the pairs, so
+    // the result does not depend on the thread count) when the first of those pairs is handed
+    // over; each pair then keeps its survivors, compacted in its own contacts.
+    const Settings settings = detail::installedSettings(call.cache);
+    const bool bodyPairBudget = settings.maxBodyPairContacts > 0 && scratch.linkBodyPairs();
+    auto reduceBodyPair = [&](int head) {
+        scratch.bodyPairContacts.clear();
+        scratch.bodyPairOwner.clear();
+        for (int i = head; i >= 0; i = scratch.bodyPairNext[static_cast<std::size_t>(i)]) {
             int count;
+            const dContactGeom* contacts = collided(scratch.pairs[static_cast<std::size_t>(i)], count);
+            scratch.bodyPairContacts.insert(scratch.bodyPairContacts.end(), contacts, contacts + std::max(count, 0));
+            scratch.bodyPairOwner.insert(scratch.bodyPairOwner.end(), static_cast<std::size_t>(std::max(count, 0)), i);
+            scratch.reducedCount[static_cast<std::size_t>(i)] = 0;
+        }
+        const Pair& first = scratch.pairs[static_cast<std::size_t>(head)];
+        const int total = static_cast<int>(scratch.bodyPairContacts.size());
+        int kept;
+        try {
+            kept = detail::chooseBodyPairContacts(dGeomGetBody(first.o1), dGeomGetBody(first.o2),
+                                                  scratch.bodyPairContacts.data(), total, sizeof(dContactGeom),
+                                                  settings, scratch.bodyPairPoints, scratch.bodyPairKept);
+        } catch (const InvalidInput&) {  // a contact with a zero normal (ODE's convex collider): all as they were
+            scratch.bodyPairKept.resize(static_cast<std::size_t>(total));
+            for (int k = 0; k < total; ++k) scratch.bodyPairKept[static_cast<std::size_t>(k)] = k;
+            kept = total;
+        }
+        // Ascending indices, pair by pair: each survivor moves to the front of its own pair's contacts.
+        for (int k = 0; k < kept; ++k) {
+            const int index = scratch.bodyPairKept[static_cast<std::size_t>(k)];
+            const int owner = scratch.bodyPairOwner[static_cast<std::size_t>(index)];
+            int count;
+            dContactGeom* contacts = collided(scratch.pairs[static_cast<std::size_t>(owner)], count);
+            contacts[scratch.reducedCount[static_cast<std::size_t>(owner)]++] =
+                scratch.bodyPairContacts[static_cast<std::size_t>(index)];
+        }
+    };
+    try {
+        for (std::size_t i = 0; i < scratch.pairs.size(); ++i) {
+            const Pair& pair = scratch.pairs[i];
+            int count;
+            dContactGeom* contacts = collided(pair, count);
             if (pair.gdcontact) {
                 std::size_t offset;
-                SlotBlock& block = scratch.blocks[blockOf(pair.index, offset)];
-                const Slot& slot = block.slots[offset];
-                while ((count = slot.count.load(std::memory_order_acquire)) < 0) {
-                    if (job.workChunk()) continue;
-                    const auto waitStart = profile ? ProfileClock::now() : ProfileClock::time_point{};
-                    for (int spins = 0; (count = slot.count.load(std::memory_order_acquire)) < 0; ++spins)
-                        if (spins >= 64) std::this_thread::yield();
-                    if (profile) waitNanos += nanosSince(waitStart);
-                }
+                const Slot& slot = scratch.blocks[blockOf(pair.index, offset)].slots[offset];
                 if (slot.cache) pairCache.count(*slot.cache);
-                contacts = block.contacts.get() + offset * static_cast<std::size_t>(slotSize);
-            } else {
-                count = pair.count;
-                contacts = scratch.packed.data.get() + pair.index;
+            }
+            if (bodyPairBudget && scratch.bodyPairHead[i] >= 0) {
+                if (scratch.reducedCount[i] < 0) reduceBodyPair(scratch.bodyPairHead[i]);
+                count = scratch.reducedCount[i];
             }
             if (count > 0) handler(data, pair.o1, pair.o2, contacts, count);
         }

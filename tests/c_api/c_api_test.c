@@ -69,6 +69,9 @@ static void checkSettings(void) {
     bad = defaults; bad.contactOrder = -1;              checkRejected(bad, "contactOrder");
     bad = defaults; bad.reductionHysteresis = 0.2;      checkRejected(bad, "reductionHysteresis");
     bad = defaults; bad.reductionHysteresis = NAN;      checkRejected(bad, "reductionHysteresis");
+    bad = defaults; bad.maxBodyPairContacts = 17;       checkRejected(bad, "maxBodyPairContacts");
+    bad = defaults; bad.bodyPairNormalTolerance = 0.6;  checkRejected(bad, "bodyPairNormalTolerance");
+    CHECK(defaults.maxBodyPairContacts == 4);
     /* success clears the message */
     CHECK(gdcInstall(&defaults) == GDC_OK);
     CHECK(strcmp(gdcLastError(), "") == 0);

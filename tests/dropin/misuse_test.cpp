@@ -86,6 +86,9 @@ TEST_CASE("every Settings field is bounded on both sides, and the message names 
         {"manifoldReuseDistance", [](gdc::Settings& s, double v) { s.manifoldReuseDistance = v; }, 0, 1, -1e-9, 2.0},
         {"contactOrder", [](gdc::Settings& s, double v) { s.contactOrder = static_cast<gdc::ContactOrder>(int(v)); }, 0, 1, -1, 2},
         {"reductionHysteresis", [](gdc::Settings& s, double v) { s.reductionHysteresis = v; }, 0, 0.1, -1e-9, 0.2},
+        // Per-body-pair contact budget
+        {"maxBodyPairContacts", [](gdc::Settings& s, double v) { s.maxBodyPairContacts = int(v); }, 0, 16, -1, 17},
+        {"bodyPairNormalTolerance", [](gdc::Settings& s, double v) { s.bodyPairNormalTolerance = v; }, 0, 0.5, -1e-9, 0.6},
     };
     for (const Field& field : fields) {
         INFO(field.name);

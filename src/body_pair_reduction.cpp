@@ -1,0 +1,292 @@
+// gdc::reduceBodyPairContacts: the per-body-pair contact budget (include/gdcontact/body_pair.hpp).
+//
+// Why: a body of several parts resting on another gets the whole support polygon of every pair of
+// parts — the composites scene had 35–39 coplanar contacts between two bodies, and ODE's Dantzig
+// LCP (dWorldStep) met degenerate pivots on those nearly dependent rows ("LCP internal error") and
+// spent most of the step on them. A resting body needs a stable support region, not every vertex
+// of it: a few points spanning the region, the deepest among them, the centre of mass above them.
+//
+// Mirror symmetry: the swapped call sees every normal negated. Clustering compares |dot| values
+// that negation leaves bit for bit; the reduction works in a plane basis built from the cluster's
+// normal turned to a canonical sign, and in coordinates relative to the cluster's first point, so
+// both calls compute with the same numbers and choose the same points.
+#include <gdcontact/body_pair.hpp>
+
+#include <gdcontact/manifold.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <utility>
+
+namespace gdc {
+namespace {
+
+double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// The normal turned so that its largest component (the first of equal ones) is positive: the same
+// vector for n and −n.
+Vec3 canonicalSign(const Vec3& n) {
+    int axis = 0;
+    for (int k = 1; k < 3; ++k)
+        if (std::abs(n[k]) > std::abs(n[axis])) axis = k;
+    return n[axis] < 0 ? Vec3(-n) : n;
+}
+
+// Two unit vectors spanning the plane ⟂ m, chosen from m alone.
+void planeBasis(const Vec3& m, Vec3& u, Vec3& v) {
+    int smallest = 0;
+    for (int k = 1; k < 3; ++k)
+        if (std::abs(m[k]) < std::abs(m[smallest])) smallest = k;
+    u = m.cross(Vec3::Unit(smallest)).normalized();
+    v = m.cross(u);
+}
+
+// Convex hull (counter-clockwise, monotone chain) of the points `indices[0, n)` of `points`, as
+// indices into `hull` (room for 2n); returns its size. Collinear points are left out; one or two
+// points give themselves. `indices` is sorted in place.
+int hullOf(const std::vector<Vec2>& points, int* indices, int n, int* hull) {
+    std::sort(indices, indices + n, [&](int a, int b) {
+        const Vec2& p = points[a];
+        const Vec2& q = points[b];
+        return p.x() < q.x() || (p.x() == q.x() && (p.y() < q.y() || (p.y() == q.y() && a < b)));
+    });
+    if (n < 3) {
+        std::copy(indices, indices + n, hull);
+        return n;
+    }
+    int k = 0;
+    for (int i = 0; i < n; ++i) {
+        while (k >= 2 && cross2(points[hull[k - 1]] - points[hull[k - 2]], points[indices[i]] - points[hull[k - 2]]) <= 0) --k;
+        hull[k++] = indices[i];
+    }
+    for (int i = n - 2, lower = k + 1; i >= 0; --i) {
+        while (k >= lower && cross2(points[hull[k - 1]] - points[hull[k - 2]], points[indices[i]] - points[hull[k - 2]]) <= 0)
+            --k;
+        hull[k++] = indices[i];
+    }
+    return std::max(1, k - 1);
+}
+
+// Hull of a few chosen points (≤ kMaxManifoldPoints + 1), into a fixed array.
+struct SmallHull {
+    std::array<int, 2 * (kMaxManifoldPoints + 2)> vertices;
+    int size = 0;
+    SmallHull(const std::vector<Vec2>& points, const int* chosen, int n) {
+        std::array<int, kMaxManifoldPoints + 2> copy;
+        std::copy(chosen, chosen + n, copy.begin());
+        size = hullOf(points, copy.data(), n, vertices.data());
+    }
+};
+
+// Whether `p` lies inside the counter-clockwise polygon `hull[0, size)` (≥ 3 vertices), by more
+// than `slack` from every edge (slack in length units: with slack ≥ 0 a centre on the boundary
+// counts as outside; a negative slack admits the boundary).
+bool strictlyInside(const std::vector<Vec2>& points, const int* hull, int size, const Vec2& p, double slack) {
+    if (size < 3) return false;
+    for (int i = 0; i < size; ++i) {
+        const Vec2& a = points[hull[i]];
+        const Vec2& b = points[hull[i + 1 == size ? 0 : i + 1]];
+        const Vec2 edge = b - a;
+        if (!(cross2(edge, p - a) > slack * edge.norm())) return false;
+    }
+    return true;
+}
+
+// Area the counter-clockwise polygon `hull` gains when `p` joins it.
+double areaGain(const std::vector<Vec2>& points, const SmallHull& hull, const Vec2& p) {
+    if (hull.size == 2)  // a segment: the triangle it makes with p
+        return 0.5 * std::abs(cross2(points[hull.vertices[1]] - points[hull.vertices[0]], p - points[hull.vertices[0]]));
+    double gain = 0;
+    for (int i = 0; i < hull.size; ++i) {
+        const Vec2& a = points[hull.vertices[i]];
+        const Vec2& b = points[hull.vertices[i + 1 == hull.size ? 0 : i + 1]];
+        const double twiceArea = cross2(b - a, p - a);
+        if (twiceArea < 0) gain -= 0.5 * twiceArea;
+    }
+    return gain;
+}
+
+// Adds points of `candidates[0, n)` to `chosen` (the kept ones, in order of choice; `size` of them)
+// until `budget`: each time the one adding the most area; ties and collinear sets (no area to add)
+// go to the farthest from every kept point, then to the first. `nearest` (per point, indexed like
+// `points`) is scratch. Returns the new size.
+int fillByArea(const std::vector<Vec2>& points, const int* candidates, int n, int budget, int* chosen, int size,
+               std::vector<double>& nearest) {
+    for (int c = 0; c < n; ++c) {
+        const int i = candidates[c];
+        nearest[i] = 1e300;
+        for (int k = 0; k < size; ++k) nearest[i] = std::min(nearest[i], (points[i] - points[chosen[k]]).squaredNorm());
+    }
+    while (size < budget) {
+        const SmallHull hull(points, chosen, size);
+        int best = -1;
+        double bestGain = -1, bestDistance = -1;
+        for (int c = 0; c < n; ++c) {
+            const int i = candidates[c];
+            if (nearest[i] == 0.0 && std::find(chosen, chosen + size, i) != chosen + size) continue;
+            const double gain = hull.size >= 2 ? areaGain(points, hull, points[i]) : 0.0;
+            if (gain > bestGain || (gain == bestGain && nearest[i] > bestDistance))
+                best = i, bestGain = gain, bestDistance = nearest[i];
+        }
+        if (best < 0) break;
+        chosen[size++] = best;
+        for (int c = 0; c < n; ++c) {
+            const int i = candidates[c];
+            nearest[i] = std::min(nearest[i], (points[i] - points[best]).squaredNorm());
+        }
+    }
+    return size;
+}
+
+void requireValid(const BodyPairContact& c, int index) {
+    const bool finite = c.position.allFinite() && c.normal.allFinite() && std::isfinite(c.depth);
+    if (!finite || std::abs(c.normal.norm() - 1.0) > 1e-6)
+        throw InvalidInput("reduceBodyPairContacts: contact " + std::to_string(index) +
+                           (finite ? " has a normal that is not unit length" : " has a non-finite position, normal or depth"));
+}
+
+}  // namespace
+
+int reduceBodyPairContacts(const BodyPairContact* contacts, int count, const BodyPairFrame& frame,
+                           const Settings& settings, std::vector<int>& kept) {
+    kept.clear();
+    if (count < 0) throw InvalidInput("reduceBodyPairContacts: negative contact count " + std::to_string(count));
+    if (count > 0 && !contacts) throw InvalidInput("reduceBodyPairContacts: null contacts");
+    for (int i = 0; i < count; ++i) requireValid(contacts[i], i);
+    const int budget = std::min(settings.maxBodyPairContacts, kMaxManifoldPoints);
+    kept.reserve(static_cast<std::size_t>(count));
+    if (budget <= 0) {
+        for (int i = 0; i < count; ++i) kept.push_back(i);
+        return count;
+    }
+
+    // Scratch, in two allocations: per contact its cluster, and five index lists.
+    std::vector<int> indices(6 * static_cast<std::size_t>(count));
+    int* clusterOf = indices.data();
+    int* firstOfCluster = clusterOf + count;
+    int* members = firstOfCluster + count;
+    int* distinct = members + count;
+    int* hull = distinct + count;  // room for 2 · count
+    std::vector<Vec2> planar(static_cast<std::size_t>(count));
+    std::vector<double> nearest(static_cast<std::size_t>(count));
+
+    // 1. Clusters by normal, in the order of the contacts.
+    const double cosTolerance = std::cos(settings.bodyPairNormalTolerance);
+    int clusters = 0;
+    for (int i = 0; i < count; ++i) {
+        int cluster = -1;
+        for (int c = 0; c < clusters && cluster < 0; ++c)
+            if (contacts[i].normal.dot(contacts[firstOfCluster[c]].normal) >= cosTolerance) cluster = c;
+        if (cluster < 0) firstOfCluster[cluster = clusters++] = i;
+        clusterOf[i] = cluster;
+    }
+
+    const double gravityLength = frame.gravity.norm();
+    const Vec3 up = gravityLength > 0 ? Vec3(-frame.gravity / gravityLength) : Vec3::Zero();
+    for (int cluster = 0; cluster < clusters; ++cluster) {
+        const BodyPairContact& first = contacts[firstOfCluster[cluster]];
+        const Vec3 axis = canonicalSign(first.normal);
+        Vec3 u, v;
+        planeBasis(axis, u, v);
+        int n = 0;
+        Vec2 low = Vec2::Constant(1e300), high = Vec2::Constant(-1e300);
+        for (int i = firstOfCluster[cluster]; i < count; ++i) {
+            if (clusterOf[i] != cluster) continue;
+            const Vec3 relative = contacts[i].position - first.position;
+            planar[i] = Vec2(relative.dot(u), relative.dot(v));
+            low = low.cwiseMin(planar[i]);
+            high = high.cwiseMax(planar[i]);
+            members[n++] = i;
+        }
+        const double extent = (high - low).norm();
+
+        // 2. Near-duplicates: deepest first (ties: the first), each kept unless a kept one is
+        //    within the merge distance. Candidates are found by a sweep along the first axis (the
+        //    distance is tiny, so there are few): no quadratic scan of the cluster.
+        const double mergeDistance = kBodyPairMergeFraction * extent;
+        std::copy(members, members + n, distinct);
+        std::sort(distinct, distinct + n, [&](int a, int b) { return planar[a].x() < planar[b].x() || (planar[a].x() == planar[b].x() && a < b); });
+        // Pairs closer than the merge distance: each as (later in depth order, earlier).
+        auto deeper = [&](int a, int b) { return contacts[a].depth > contacts[b].depth || (contacts[a].depth == contacts[b].depth && a < b); };
+        std::vector<std::pair<int, int>> close;
+        for (int a = 0; a < n; ++a)
+            for (int b = a + 1; b < n && planar[distinct[b]].x() - planar[distinct[a]].x() <= mergeDistance; ++b) {
+                const int p = distinct[a], q = distinct[b];
+                if ((planar[p] - planar[q]).squaredNorm() <= mergeDistance * mergeDistance)
+                    close.push_back(deeper(p, q) ? std::make_pair(q, p) : std::make_pair(p, q));
+            }
+        std::copy(members, members + n, distinct);
+        std::stable_sort(distinct, distinct + n, [&](int a, int b) { return contacts[a].depth > contacts[b].depth; });
+        int distinctCount = n;
+        if (!close.empty()) {
+            // Walk in depth order; a point goes when a deeper one it is close to was kept.
+            std::vector<char> dropped(static_cast<std::size_t>(count), 0);
+            distinctCount = 0;
+            for (int k = 0; k < n; ++k) {
+                const int i = distinct[k];
+                bool duplicate = false;
+                for (const auto& [later, earlier] : close)
+                    if (later == i && !dropped[static_cast<std::size_t>(earlier)]) duplicate = true;
+                if (duplicate) dropped[static_cast<std::size_t>(i)] = 1;
+                else distinct[distinctCount++] = i;
+            }
+        }
+        if (distinctCount <= budget) {
+            kept.insert(kept.end(), distinct, distinct + distinctCount);
+            continue;
+        }
+
+        // 3. The budget: the deepest (distinct[0]), the farthest from it, then by area.
+        const int deepest = distinct[0];
+        std::array<int, kMaxManifoldPoints + 2> chosen;
+        chosen[0] = deepest;
+        int size = 1;
+        if (budget >= 2) {
+            int farthest = -1;
+            double farthestDistance = -1;
+            for (int k = 1; k < distinctCount; ++k) {
+                const int i = distinct[k];
+                const double d = (planar[i] - planar[deepest]).squaredNorm();
+                if (d > farthestDistance) farthest = i, farthestDistance = d;
+            }
+            chosen[size++] = farthest;
+            size = fillByArea(planar, distinct, distinctCount, budget, chosen.data(), size, nearest);
+        }
+
+        // The carried body's centre of mass over the kept polygon, where it was over the whole one.
+        const double push = up.dot(first.normal);  // > 0: the normal (from B into A) lifts A
+        const bool carriesA = push > 0 && frame.hasCentreA, carriesB = push < 0 && frame.hasCentreB;
+        if (budget >= 3 && (carriesA || carriesB)) {
+            const Vec3 relative = (carriesA ? frame.centreA : frame.centreB) - first.position;
+            const Vec2 centre(relative.dot(u), relative.dot(v));
+            const double slack = 1e-9 * extent;
+            const SmallHull keptHull(planar, chosen.data(), size);
+            if (!strictlyInside(planar, keptHull.vertices.data(), keptHull.size, centre, slack)) {
+                std::copy(distinct, distinct + distinctCount, members);  // hullOf sorts its input
+                const int wholeSize = hullOf(planar, members, distinctCount, hull);
+                if (strictlyInside(planar, hull, wholeSize, centre, slack)) {
+                    // The triangles of the deepest with the polygon's edges cover the polygon (the
+                    // deepest lies in it): one of them holds the centre.
+                    for (int e = 0; e < wholeSize; ++e) {
+                        const int a = hull[e], b = hull[e + 1 == wholeSize ? 0 : e + 1];
+                        if (a == deepest || b == deepest) continue;
+                        const int triangle[3] = {deepest, a, b};
+                        const SmallHull corner(planar, triangle, 3);
+                        // Closed triangles: a centre on the diagonal from the deepest counts for both sides.
+                        if (!strictlyInside(planar, corner.vertices.data(), corner.size, centre, -slack)) continue;
+                        std::copy(triangle, triangle + 3, chosen.begin());
+                        size = fillByArea(planar, distinct, distinctCount, budget, chosen.data(), 3, nearest);
+                        break;
+                    }
+                }
+            }
+        }
+        kept.insert(kept.end(), chosen.begin(), chosen.begin() + size);
+    }
+    std::sort(kept.begin(), kept.end());
+    return static_cast<int>(kept.size());
+}
+
+}  // namespace gdc

@@ -1,0 +1,273 @@
+// gdc::reduceBodyPairContacts (the per-body-pair contact budget) against exact answers: the
+// budget per cluster, clusters by normal, the deepest kept, near-duplicates merged, the widest
+// support, the carried body's centre of mass over the kept points, the mirrored call.
+#include <gdcontact/body_pair.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <random>
+#include <vector>
+
+using namespace gdc;
+
+namespace {
+
+// A grid of nx × ny contacts on the plane z = height, normal +z (from B below into A above),
+// spacing `step`, depths from `depth`.
+std::vector<BodyPairContact> grid(int nx, int ny, double step, double height, double depth = 1e-4) {
+    std::vector<BodyPairContact> contacts;
+    for (int i = 0; i < nx; ++i)
+        for (int j = 0; j < ny; ++j) contacts.push_back({Vec3(i * step, j * step, height), Vec3::UnitZ(), depth});
+    return contacts;
+}
+
+Settings budget(int count) {
+    Settings s;
+    s.maxBodyPairContacts = count;
+    return s;
+}
+
+std::vector<int> reduce(const std::vector<BodyPairContact>& contacts, const Settings& settings,
+                        const BodyPairFrame& frame = {}) {
+    std::vector<int> kept;
+    const int n = reduceBodyPairContacts(contacts.data(), static_cast<int>(contacts.size()), frame, settings, kept);
+    REQUIRE(n == static_cast<int>(kept.size()));
+    REQUIRE(std::is_sorted(kept.begin(), kept.end()));
+    REQUIRE(std::adjacent_find(kept.begin(), kept.end()) == kept.end());
+    return kept;
+}
+
+double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Area of the convex hull of the chosen contacts' (x, y) (gift wrapping over a few points).
+double hullArea(const std::vector<BodyPairContact>& contacts, const std::vector<int>& chosen) {
+    std::vector<Vec2> p;
+    for (int i : chosen) p.push_back(contacts[i].position.head<2>());
+    std::sort(p.begin(), p.end(), [](const Vec2& a, const Vec2& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
+    if (p.size() < 3) return 0.0;
+    std::vector<Vec2> h(2 * p.size());
+    int k = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        while (k >= 2 && cross2(h[k - 1] - h[k - 2], p[i] - h[k - 2]) <= 0) --k;
+        h[k++] = p[i];
+    }
+    for (int i = static_cast<int>(p.size()) - 2, lower = k + 1; i >= 0; --i) {
+        while (k >= lower && cross2(h[k - 1] - h[k - 2], p[i] - h[k - 2]) <= 0) --k;
+        h[k++] = p[i];
+    }
+    double area = 0;
+    for (int i = 0; i + 1 < k; ++i) area += 0.5 * cross2(h[i], h[i + 1]);
+    return area;
+}
+
+bool insideHull(const std::vector<BodyPairContact>& contacts, const std::vector<int>& chosen, const Vec2& q) {
+    // Inside the convex hull: q is a convex combination, tested as "on the inner side of every
+    // hull edge", with the hull by brute force over pairs (a pair is an edge when all points lie
+    // on one side).
+    std::vector<Vec2> p;
+    for (int i : chosen) p.push_back(contacts[i].position.head<2>());
+    if (p.size() < 3) return false;
+    for (std::size_t a = 0; a < p.size(); ++a)
+        for (std::size_t b = 0; b < p.size(); ++b) {
+            if (a == b) continue;
+            bool edge = true;
+            for (std::size_t c = 0; c < p.size() && edge; ++c) edge = cross2(p[b] - p[a], p[c] - p[a]) >= 0;
+            if (edge && cross2(p[b] - p[a], q - p[a]) <= 0) return false;
+        }
+    return true;
+}
+
+}  // namespace
+
+TEST_CASE("body pair: the budget holds per cluster, and the kept points span the support's corners") {
+    const auto contacts = grid(6, 6, 0.1, 0.0);  // a 0.5 × 0.5 support, 36 coplanar contacts
+    for (int count : {1, 2, 3, 4, 6, 16}) {
+        INFO("budget " << count);
+        const auto kept = reduce(contacts, budget(count));
+        CHECK(static_cast<int>(kept.size()) == std::min(count, 36));
+    }
+    // Four points of a square grid that span the most area: its four corners (area 0.25 exactly).
+    const auto four = reduce(contacts, budget(4));
+    CHECK(hullArea(contacts, four) == Approx(0.25).epsilon(1e-12));
+}
+
+TEST_CASE("body pair: off (0) keeps every contact") {
+    const auto contacts = grid(5, 5, 0.1, 0.0);
+    CHECK(reduce(contacts, budget(0)).size() == 25);
+}
+
+TEST_CASE("body pair: the deepest point is kept") {
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> depth(0.0, 1e-3);
+    for (int trial = 0; trial < 200; ++trial) {
+        auto contacts = grid(5, 4, 0.07, 0.3);
+        for (BodyPairContact& c : contacts) c.depth = depth(random);
+        const int deepest = static_cast<int>(
+            std::max_element(contacts.begin(), contacts.end(), [](auto& a, auto& b) { return a.depth < b.depth; }) -
+            contacts.begin());
+        for (int count : {1, 3, 4}) {
+            const auto kept = reduce(contacts, budget(count));
+            CHECK(std::find(kept.begin(), kept.end(), deepest) != kept.end());
+        }
+    }
+}
+
+TEST_CASE("body pair: clusters by normal, opposite and tilted supports keep their own budget") {
+    // A body clamped between two faces of another: a bottom support (normal +z) and a top one
+    // (normal −z) of the same shape; and a side wall (normal +x). Each is a 4 × 4 grid.
+    auto bottom = grid(4, 4, 0.1, 0.0);
+    auto top = grid(4, 4, 0.1, 0.2);
+    for (BodyPairContact& c : top) c.normal = -Vec3::UnitZ();
+    std::vector<BodyPairContact> side;
+    for (int j = 0; j < 4; ++j)
+        for (int k = 0; k < 4; ++k) side.push_back({Vec3(-0.05, j * 0.1, 0.02 + k * 0.05), Vec3::UnitX(), 1e-4});
+    std::vector<BodyPairContact> contacts;
+    for (auto* part : {&bottom, &top, &side}) contacts.insert(contacts.end(), part->begin(), part->end());
+    const auto kept = reduce(contacts, budget(4));
+    int inBottom = 0, inTop = 0, inSide = 0;
+    for (int i : kept) (i < 16 ? inBottom : i < 32 ? inTop : inSide) += 1;
+    CHECK(inBottom == 4);
+    CHECK(inTop == 4);
+    CHECK(inSide == 4);
+
+    // Normals 2° apart are one cluster at the default tolerance (5°), two at 1°.
+    auto tilted = grid(4, 4, 0.1, 0.0);
+    const Vec3 n = Vec3(std::sin(0.035), 0, std::cos(0.035));
+    for (BodyPairContact& c : tilted) c.normal = n, c.position.x() += 1.0;
+    std::vector<BodyPairContact> both = bottom;
+    both.insert(both.end(), tilted.begin(), tilted.end());
+    CHECK(reduce(both, budget(4)).size() == 4);
+    Settings narrow = budget(4);
+    narrow.bodyPairNormalTolerance = 0.0175;
+    CHECK(reduce(both, narrow).size() == 8);
+}
+
+TEST_CASE("body pair: two parallel supports at different heights are one cluster, reduced over both") {
+    // Two parts of A resting on two parts of B, both faces +z but 5 cm apart in height and 1 m
+    // apart sideways: the kept points span both (a body on one of them alone would tip).
+    auto left = grid(3, 3, 0.1, 0.0);
+    auto right = grid(3, 3, 0.1, 0.05);
+    for (BodyPairContact& c : right) c.position.x() += 1.0;
+    std::vector<BodyPairContact> contacts = left;
+    contacts.insert(contacts.end(), right.begin(), right.end());
+    const auto kept = reduce(contacts, budget(4));
+    REQUIRE(kept.size() == 4);
+    const int onLeft = static_cast<int>(std::count_if(kept.begin(), kept.end(), [](int i) { return i < 9; }));
+    CHECK(onLeft == 2);
+    CHECK(hullArea(contacts, kept) == Approx(1.2 * 0.2).epsilon(1e-12));  // the corners of both
+}
+
+TEST_CASE("body pair: near-duplicates are merged, the deeper kept") {
+    // The same point reported by two pairs of parts (overlapping parts of one body), to rounding,
+    // and a point 1e-5 of the support's size away: each pair is one row to the solver.
+    std::vector<BodyPairContact> contacts = {{Vec3(0, 0, 0), Vec3::UnitZ(), 1e-4},
+                                             {Vec3(1, 0, 0), Vec3::UnitZ(), 1e-4},
+                                             {Vec3(1 + 6e-17, 0, 0), Vec3::UnitZ(), 2e-4},
+                                             {Vec3(0, 1, 0), Vec3::UnitZ(), 1e-4},
+                                             {Vec3(1e-5, 1, 0), Vec3::UnitZ(), 1e-4}};
+    const auto kept = reduce(contacts, budget(8));  // the budget is not what drops them
+    CHECK(kept == std::vector<int>{0, 2, 3});
+    // Same positions seen along the normal, different depths (one above the other): one row.
+    std::vector<BodyPairContact> stacked = {{Vec3(0, 0, 0), Vec3::UnitZ(), 1e-4},
+                                            {Vec3(0, 0, 0.01), Vec3::UnitZ(), 3e-4},
+                                            {Vec3(1, 0, 0), Vec3::UnitZ(), 1e-4}};
+    CHECK(reduce(stacked, budget(8)) == std::vector<int>{1, 2});
+    // Points 1 % of the support apart are distinct.
+    std::vector<BodyPairContact> apart = {{Vec3(0, 0, 0), Vec3::UnitZ(), 1e-4},
+                                          {Vec3(0.01, 0, 0), Vec3::UnitZ(), 1e-4},
+                                          {Vec3(1, 0, 0), Vec3::UnitZ(), 1e-4}};
+    CHECK(reduce(apart, budget(8)).size() == 3);
+}
+
+TEST_CASE("body pair: the carried body's centre of mass stays over the kept points") {
+    // A 10 × 10 grid (0.9 m square) whose deepest point is the corner (0.9, 0). Budget 3: the
+    // deepest, the farthest (0, 0.9) and by area (0, 0) — half the square. A centre of mass over
+    // the other half lies inside the support but outside those three: the rule must keep a
+    // triangle with the deepest that holds it.
+    auto contacts = grid(10, 10, 0.1, 0.0);
+    contacts[90].depth = 5e-4;  // (0.9, 0)
+    std::mt19937 random(3);
+    std::uniform_real_distribution<double> coordinate(0.01, 0.89);
+    int missedWithoutRule = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+        const Vec2 centre(coordinate(random), coordinate(random));  // inside the support
+        BodyPairFrame frame;
+        frame.centreA = Vec3(centre.x(), centre.y(), 0.3);  // A above: the normal +z lifts A
+        frame.hasCentreA = true;
+        frame.gravity = Vec3(0, 0, -9.81);
+        const auto kept = reduce(contacts, budget(3), frame);
+        INFO("centre " << centre.transpose());
+        CHECK(kept.size() == 3);
+        CHECK(std::find(kept.begin(), kept.end(), 90) != kept.end());
+        CHECK(insideHull(contacts, kept, centre));
+        // B's centre is not carried (the normal pushes B down): the plain reduction.
+        BodyPairFrame below;
+        below.centreB = frame.centreA;
+        below.hasCentreB = true;
+        below.gravity = frame.gravity;
+        const auto plain = reduce(contacts, budget(3));
+        CHECK(reduce(contacts, budget(3), below) == plain);
+        if (!insideHull(contacts, plain, centre)) ++missedWithoutRule;
+    }
+    CHECK(missedWithoutRule > 100);  // about half: the rule is what keeps them
+}
+
+TEST_CASE("body pair: the swapped pair gives the same contacts, mirrored") {
+    std::mt19937 random(9);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0), depth(0.0, 1e-3);
+    for (int trial = 0; trial < 200; ++trial) {
+        // Three clusters with random normals, random points on each plane, random depths.
+        std::vector<BodyPairContact> contacts;
+        for (int cluster = 0; cluster < 3; ++cluster) {
+            const Vec3 n = Vec3(unit(random), unit(random), unit(random)).normalized();
+            const Vec3 u = n.unitOrthogonal(), v = n.cross(u);
+            const Vec3 origin(unit(random), unit(random), unit(random));
+            for (int i = 0; i < 12; ++i)
+                contacts.push_back({origin + unit(random) * u + unit(random) * v, n, depth(random)});
+        }
+        BodyPairFrame frame;
+        frame.centreA = Vec3(unit(random), unit(random), unit(random));
+        frame.centreB = Vec3(unit(random), unit(random), unit(random));
+        frame.hasCentreA = frame.hasCentreB = true;
+        frame.gravity = Vec3(0, 0, -9.81);
+        std::vector<BodyPairContact> mirrored = contacts;
+        for (BodyPairContact& c : mirrored) c.normal = -c.normal;
+        BodyPairFrame swapped = frame;
+        std::swap(swapped.centreA, swapped.centreB);
+        for (int count : {3, 4, 6}) {
+            const auto kept = reduce(contacts, budget(count), frame);
+            CHECK(kept == reduce(mirrored, budget(count), swapped));
+            CHECK(static_cast<int>(kept.size()) <= 3 * count);
+        }
+    }
+}
+
+TEST_CASE("body pair: bad contacts are refused where they enter") {
+    std::vector<int> kept;
+    std::vector<BodyPairContact> contacts = grid(2, 2, 0.1, 0.0);
+    CHECK_THROWS_AS(reduceBodyPairContacts(contacts.data(), -1, {}, Settings{}, kept), InvalidInput);
+    CHECK_THROWS_AS(reduceBodyPairContacts(nullptr, 2, {}, Settings{}, kept), InvalidInput);
+    contacts[1].normal = Vec3::Zero();
+    CHECK_THROWS_WITH(reduceBodyPairContacts(contacts.data(), 4, {}, Settings{}, kept),
+                      Catch::Contains("contact 1") && Catch::Contains("unit"));
+    contacts[1].normal = Vec3::UnitZ();
+    contacts[2].depth = NAN;
+    CHECK_THROWS_WITH(reduceBodyPairContacts(contacts.data(), 4, {}, Settings{}, kept),
+                      Catch::Contains("contact 2") && Catch::Contains("non-finite"));
+    CHECK(reduceBodyPairContacts(contacts.data(), 0, {}, Settings{}, kept) == 0);
+}
+
+TEST_CASE("body pair: settings out of bounds are refused by validate") {
+    Settings s;
+    s.maxBodyPairContacts = -1;
+    CHECK_THROWS_WITH(validate(s), Catch::Contains("maxBodyPairContacts"));
+    s.maxBodyPairContacts = 17;
+    CHECK_THROWS_WITH(validate(s), Catch::Contains("maxBodyPairContacts"));
+    s = Settings{};
+    s.bodyPairNormalTolerance = 0.51;
+    CHECK_THROWS_WITH(validate(s), Catch::Contains("bodyPairNormalTolerance"));
+    s.bodyPairNormalTolerance = NAN;
+    CHECK_THROWS_WITH(validate(s), Catch::Contains("bodyPairNormalTolerance"));
+    CHECK_NOTHROW(validate(Settings{}));
+}
