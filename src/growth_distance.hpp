@@ -101,30 +101,33 @@ RayCastResult gjkRayCast(const Support& support, const Vec3& origin, const Vec3&
         if (facetNormal.dot(result.normal) < 0) facetNormal = -facetNormal;
         if (facetNormal.squaredNorm() > 0 && facetNormal.allFinite()) {
             facetNormal.normalize();
-            double height = facetNormal.dot(simplex[0].point);
-            if (facetNormal.dot(support(facetNormal).point) <= height + tolerance) {
-                result.normal = facetNormal;
-                // The hit is where the ray meets this supporting facet: exact, where the loop's λ is
-                // only as good as its convergence. A cast that stalls (no new support point, no
-                // advance) stops short of the facet, which overestimated the exit along the ray —
-                // by 2.8e-6 of the size on the thin facet that two nearly flat roofs make of
-                // A − B, the edge–edge depth then 0.2 % deeper than the exact penetration (issue
-                // 21). Only ever forward (λ grows to the hit), and only where the hit lies in the
-                // facet's triangle, so the witnesses' weights stay convex.
-                // A converged cast (|v| within the tolerance) is already on the facet to the tolerance.
-                const double along = facetNormal.dot(direction);
-                if (v.squaredNorm() > toleranceSquared && along < -1e-6) {
-                    const double lambda = (height - facetNormal.dot(origin)) / along;
-                    if (lambda > result.lambda) {
-                        const Vec3 hit = origin + lambda * direction;
-                        const std::array<Vec3, 4> relative = {hit - simplex[0].point, hit - simplex[1].point,
-                                                              hit - simplex[2].point, Vec3::Zero()};
-                        const SimplexClosest closest = closestPointToOrigin(relative, 3);
-                        if (closest.count == 3) {
-                            result.lambda = lambda;
-                            for (int i = 0; i < 3; ++i) result.weights[i] = closest.weights[i];
-                        }
-                    }
+            const double height = facetNormal.dot(simplex[0].point);
+            const double supportHeight = facetNormal.dot(support(facetNormal).point);
+            if (supportHeight <= height + tolerance) result.normal = facetNormal;
+            // A cast that stalls (no new support point, no advance) stops short of the surface, and
+            // its exit along the ray is too far: by 2.8e-6 of the size on the thin facet that two
+            // edges whose faces lie nearly flat to the contact plane make of A − B, the edge–edge
+            // depth then 0.2 % above the exact penetration, and a grazing pair 1e-6 "deep" while
+            // apart (issue 21). The support plane along the final triangle's normal bounds the
+            // exit too (every support plane does), and lies within its gap of the triangle, which
+            // is inside the set: the ray's meeting point with it is the better answer. Only ever
+            // forward (λ grows to the hit, the exit stays an upper bound); the witnesses' weights
+            // are those of the triangle's point closest to it (convex). A converged cast (|v|
+            // within the tolerance) is on its facet already.
+            const double along = facetNormal.dot(direction);
+            if (v.squaredNorm() > toleranceSquared && along < -1e-6) {
+                const double lambda = (supportHeight - facetNormal.dot(origin)) / along;
+                if (lambda > result.lambda) {
+                    const Vec3 hit = origin + lambda * direction;
+                    const std::array<Vec3, 4> relative = {hit - simplex[0].point, hit - simplex[1].point,
+                                                          hit - simplex[2].point, Vec3::Zero()};
+                    const SimplexClosest closest = closestPointToOrigin(relative, 3);
+                    std::array<SupportPoint, 4> reduced{};
+                    for (int i = 0; i < closest.count; ++i) reduced[i] = simplex[closest.used[i]];
+                    result.lambda = lambda;
+                    result.simplex = reduced;
+                    result.simplexCount = closest.count;
+                    for (int i = 0; i < 4; ++i) result.weights[i] = i < closest.count ? closest.weights[i] : 0;
                 }
             }
         }

@@ -477,5 +477,11 @@ TEST_CASE("oracle: composites of random hulls against hulls and boxes", "[oracle
 // seed, and edge–edge poses of every family.
 TEST_CASE("oracle: edge to edge between faces nearly parallel to the contact plane", "[oracle]") {
     CHECK(runOracle(21006797, 1, -1, -1, -1).violations == 0);
+    // Two more of the stalled cast, found by a 1.2·10^6 sweep: a face against a needle's nearly
+    // flat edge, the pair apart by 1.4e-6·s and reported 4e-6·s deep; a grazing face–face pair
+    // apart by 2e-9·s reported 1e-6·s deep (the final triangle 1.4e-10·s off supporting: its
+    // support plane bounds the exit).
+    CHECK(runOracle(40002595, 1, -1, -1, -1).violations == 0);
+    CHECK(runOracle(40051497, 1, -1, -1, -1).violations == 0);
     CHECK(runOracle(seedOr(21500000), pairsOr(1500), -1, -1, static_cast<int>(PoseFamily::EdgeEdge)).violations == 0);
 }
