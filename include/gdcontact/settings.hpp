@@ -20,12 +20,11 @@ GDCONTACT_API void validate(const Settings& settings);
 /// is always in the order of importance: the deepest point first, then each point that adds the
 /// most support, so that every prefix is the best set of its length.)
 enum class ContactOrder {
-    /// The solver meets the shallowest point first and the deepest last (the adapter's array is
-    /// deepest first, as earlier gdcontact wrote it). The least drift in tall stacks; resting
-    /// piles fall asleep a little later than with ODE's dBox colliders.
+    /// The solver meets the shallowest point first and the deepest last (default; the adapter's
+    /// array is deepest first, as earlier gdcontact wrote it): the least drift and twist.
     DeepestLast,
-    /// The solver meets the deepest point first and the shallowest last (default): stacks stand in
-    /// every seed measured, resting piles fall asleep sooner than with ODE's dBox colliders.
+    /// The solver meets the deepest point first and the shallowest last: resting piles fall
+    /// asleep a little sooner, tall stacks drift more (still less than with ODE's dBox colliders).
     DeepestFirst,
 };
 
@@ -128,20 +127,20 @@ struct Settings {
 
     /// The order in which dWorldQuickStep (projected Gauss–Seidel, which solves rows in the order
     /// they arrive) meets one pair's contacts through the ODE adapter: by depth, see ContactOrder.
-    /// It trades drift in tall stacks (DeepestLast: less) against the time resting bodies take to
-    /// fall asleep (DeepestFirst: sooner); measured over 200 seeds in docs/algorithm.md. The
+    /// It trades drift in stacks (DeepestLast: less) against the time resting bodies take to fall
+    /// asleep (DeepestFirst: a little sooner); measured over 200 seeds in docs/algorithm.md. The
     /// core's array is always in the order of importance.
     /// Bounds: a ContactOrder value (checked: a value cast from an integer may be neither).
-    ContactOrder contactOrder = ContactOrder::DeepestFirst;
+    ContactOrder contactOrder = ContactOrder::DeepestLast;
 
-    /// Reduction and order — hysteresis without state (relative, unitless): candidates whose depth
-    /// (for the first point) or whose gain (distance, then added area, for the others) is within
-    /// this fraction of the best count as equal, and the tie goes to a fixed identity (the point's
-    /// position along a fixed generic world direction), so that a resting pair keeps the same
-    /// points, in the same order, from step to step instead of flipping between near-equal corners
-    /// (a changing order makes resting bodies jitter and sleep later). Larger: steadier, at a
-    /// kept set up to this fraction less deep or less wide than the best; 0: always the strict
-    /// best. Bounds [0, 0.1]: above 10 % the first point may be visibly shallower than the deepest.
+    /// Reduction — hysteresis without state (relative, unitless): after the deepest point (depths
+    /// equal within rounding count as equal), candidates whose gain — the distance from the first
+    /// point, then the area added to the kept points — is within this fraction of the best count as
+    /// equal, and the tie goes to a fixed identity (the point's position along a fixed generic
+    /// world direction), so that a resting pair keeps the same points, in the same order, from step
+    /// to step instead of flipping between near-equal corners. Larger: steadier, at a kept set up
+    /// to this fraction less wide than the greedy best; 0: always the strict best.
+    /// Bounds [0, 0.1]: above 10 % the kept points may span visibly less than the best.
     double reductionHysteresis = 0.01;
 };
 
