@@ -106,7 +106,7 @@ int rankAllOfFew(const RankPoint* points, int count, const RankingRule& rule, in
     double value[4];
     double deepest = -INFINITY;
     for (int k = 0; k < count; ++k) deepest = std::max(deepest, value[k] = points[k].depth);
-    pick(0, value, deepest - rule.hysteresis * std::abs(deepest) - rule.tolerance);
+    pick(0, value, deepest - rule.tolerance);
     if (count > 2) {
         const Vec2 p0 = points[order[0]].planar;
         double farthest = 0;
@@ -161,10 +161,12 @@ int rankContacts(const RankPoint* points, int count, const RankingRule& rule, in
             if (!taken[i]) return take(i, slot);
     };
 
-    // The deepest point; depths within the band of it are equal (a resting face's corners).
+    // The deepest point; depths within rounding of it are equal (an exactly resting face's corners).
+    // No wider band: the first point carries the pair's whole penetration (ODE's contract), and a
+    // dropped deeper corner tilted dWorldStep's stacks by micrometres.
     double deepest = -INFINITY;
     for (int i = 0; i < count; ++i) deepest = std::max(deepest, value[i] = points[i].depth);
-    take(pickAtLeast(deepest - rule.hysteresis * std::abs(deepest) - rule.tolerance), 0);
+    take(pickAtLeast(deepest - rule.tolerance), 0);
     if (wanted == 1) return 1;
     if (count == 2) return takeLast(1), 2;
 

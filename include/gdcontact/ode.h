@@ -42,8 +42,8 @@ extern "C" {
 
 /* Values of gdcSettings.contactOrder (gdc::ContactOrder): the order in which dWorldQuickStep meets
  * one pair's contacts. */
-#define GDC_ORDER_DEEPEST_LAST 0  /* the deepest point last: the least drift in tall stacks */
-#define GDC_ORDER_DEEPEST_FIRST 1 /* the deepest point first (default): resting bodies sleep sooner */
+#define GDC_ORDER_DEEPEST_LAST 0  /* the deepest point last (default): the least drift */
+#define GDC_ORDER_DEEPEST_FIRST 1 /* the deepest point first: resting bodies sleep a little sooner */
 
 /* The fields of gdc::Settings, in its order, with its units and the bounds gdcInstall checks
  * (settings.hpp says why each bound is there): rayCastTolerance (relative, 1e-15..1e-3),

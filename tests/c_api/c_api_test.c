@@ -41,8 +41,8 @@ static void checkSettings(void) {
     gdcSettings bad;
     memset(&defaults, 0xff, sizeof defaults);
     gdcDefaultSettings(&defaults);
-    CHECK(defaults.maxContacts == 4);
-    CHECK(defaults.contactOrder == GDC_ORDER_DEEPEST_FIRST);
+    CHECK(defaults.maxContacts == 8);
+    CHECK(defaults.contactOrder == GDC_ORDER_DEEPEST_LAST);
     CHECK(defaults.reductionHysteresis > 0.0 && defaults.reductionHysteresis <= 0.1);
     CHECK(defaults.maxRayCastIterations == 64);
     CHECK(defaults.spanContactRegion == 0);

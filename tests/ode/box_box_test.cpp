@@ -148,11 +148,7 @@ bool hullCovers(const std::vector<Vec3>& outer, const std::vector<Vec3>& inner, 
 }  // namespace
 
 TEST_CASE("on face contacts gdcontact's normal is dBoxBox's and its points cover dBoxBox's", "[ode][box-box]") {
-    // With dBoxBox's budget of 8 points (the default budget of 4 keeps the 4 that span the most
-    // of the polygon instead: tests/reduction_test.cpp states how much).
-    Settings eight;
-    eight.maxContacts = 8;
-    OdeSession session(true, eight);
+    OdeSession session;
     std::mt19937_64 random(1977);
     std::uniform_real_distribution<double> extent(0.15, 1.0), unit(0.0, 1.0), angle(-M_PI, M_PI);
     const std::vector<Mat3> symmetries = cubeSymmetries();

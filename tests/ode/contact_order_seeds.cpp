@@ -44,14 +44,18 @@ Contender parseContender(const std::string& text) {
         contender.ode = true;
         return contender;
     }
-    char order[16] = {};
+    char order[32] = {};
     int budget = 4;
     double hysteresis = 0.01;
-    if (std::sscanf(text.c_str(), "gdc:%15[a-z-]:%d:%lf", order, &budget, &hysteresis) < 1) {
+    if (std::sscanf(text.c_str(), "gdc:%31[a-z-]:%d:%lf", order, &budget, &hysteresis) < 1) {
         std::fprintf(stderr, "bad contender %s\n", text.c_str());
         std::exit(2);
     }
     const std::string o = order;
+    if (o != "first" && o != "last" && o != "importance-last" && o != "importance-first") {
+        std::fprintf(stderr, "bad order %s (first, last, importance-last, importance-first)\n", order);
+        std::exit(2);
+    }
     contender.order = o == "first"              ? Order::First
                       : o == "importance-last"  ? Order::ImportanceLast
                       : o == "importance-first" ? Order::ImportanceFirst
