@@ -177,10 +177,24 @@ def section(results, plot_link, level, reproduce=None):
     # The overview a user chooses from: each contender's fail fraction and whole step ÷ best ODE option.
     contenders = sorted({r["contender"] for r in rows}, key=contender_order)
     index = {(r["scene"], r["stepper"], r["contender"]): r for r in rows}
+    # Paired seeds (the same seed is the same start for every contender): where gdcontact and dBox disagree.
+    paired = {}
+    runs_path = os.path.join(results, "solver_seeds_runs.csv")
+    if os.path.exists(runs_path):
+        failed = {(r["scene"], r["stepper"], r["contender"], r["seed"]): r["failed"] == "1" for r in read_csv(runs_path)}
+        for (scene, stepper, contender, seed), gdc_failed in failed.items():
+            if contender != "gdc" or (scene, stepper, "ode-box", seed) not in failed:
+                continue
+            box_failed = failed[(scene, stepper, "ode-box", seed)]
+            counts = paired.setdefault((scene, stepper), [0, 0])
+            counts[0] += gdc_failed and not box_failed
+            counts[1] += box_failed and not gdc_failed
     out.append("Overview — per scene and stepper, each contender's **fraction of seeds failing** and, in brackets, its "
-               "**whole step on identical states ÷ the best ODE option** (named in the last column):\n")
-    out.append("| scene | stepper | " + " | ".join(contender_label(c) for c in contenders) + " | best ODE option |")
-    out.append("|---|---|" + "---|" * len(contenders) + "---|")
+               "**whole step on identical states ÷ the best ODE option** (named in the next column); the last column "
+               "pairs the seeds of gdcontact and ODE dBox: seeds where gdcontact fails and dBox stands / where dBox "
+               "fails and gdcontact stands:\n")
+    out.append("| scene | stepper | " + " | ".join(contender_label(c) for c in contenders) + " | best ODE option | gdc-only / dBox-only failures |")
+    out.append("|---|---|" + "---|" * len(contenders) + "---|---|")
     for sc in scenes:
         for stepper in STEPPER_ORDER:
             present = [index.get((sc["scene"], stepper, c)) for c in contenders]
@@ -194,7 +208,9 @@ def section(results, plot_link, level, reproduce=None):
                 ratio = number(r["ratio_to_best_ode"])
                 cells.append(f"{fmt(number(r['fail_fraction']), 2)}" + (f" ({fmt(ratio, 2)}×)" if not math.isnan(ratio) else ""))
                 best = best or contender_label(r["best_ode"]) if r["best_ode"] else best
-            out.append(f"| {sc['scene']} | {STEPPER_LABEL[stepper]} | " + " | ".join(cells) + f" | {best} |")
+            pair = paired.get((sc["scene"], stepper))
+            out.append(f"| {sc['scene']} | {STEPPER_LABEL[stepper]} | " + " | ".join(cells) + f" | {best} | "
+                       + (f"{pair[0]} / {pair[1]}" if pair else "–") + " |")
     out.append("")
     if plot_link:
         out.append(f"![stability against cost per scene]({plot_link})\n")
