@@ -14,6 +14,8 @@
 
 #include <gdcontact/manifold.hpp>
 
+#include "feature_intersection.hpp"  // detail::planeBasis: the contact plane's basis, chosen from the normal alone
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -32,15 +34,6 @@ Vec3 canonicalSign(const Vec3& n) {
     for (int k = 1; k < 3; ++k)
         if (std::abs(n[k]) > std::abs(n[axis])) axis = k;
     return n[axis] < 0 ? Vec3(-n) : n;
-}
-
-// Two unit vectors spanning the plane ⟂ m, chosen from m alone.
-void planeBasis(const Vec3& m, Vec3& u, Vec3& v) {
-    int smallest = 0;
-    for (int k = 1; k < 3; ++k)
-        if (std::abs(m[k]) < std::abs(m[smallest])) smallest = k;
-    u = m.cross(Vec3::Unit(smallest)).normalized();
-    v = m.cross(u);
 }
 
 // Convex hull (counter-clockwise, monotone chain) of the points `indices[0, n)` of `points`, as
@@ -189,7 +182,7 @@ int reduceBodyPairContacts(const BodyPairContact* contacts, int count, const Bod
         const BodyPairContact& first = contacts[firstOfCluster[cluster]];
         const Vec3 axis = canonicalSign(first.normal);
         Vec3 u, v;
-        planeBasis(axis, u, v);
+        detail::planeBasis(axis, u, v);
         int n = 0;
         Vec2 low = Vec2::Constant(1e300), high = Vec2::Constant(-1e300);
         for (int i = firstOfCluster[cluster]; i < count; ++i) {

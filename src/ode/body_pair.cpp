@@ -23,11 +23,19 @@ Vec3 vec(const dReal* v) { return Vec3(v[0], v[1], v[2]); }
 
 }  // namespace
 
+bool bothHaveOneGeom(dBodyID b1, dBodyID b2) {
+    auto single = [](dBodyID body) {
+        const dGeomID first = body ? dBodyGetFirstGeom(body) : nullptr;
+        return first && !dBodyGetNextGeom(first);
+    };
+    return single(b1) && single(b2);
+}
+
 int chooseBodyPairContacts(dBodyID b1, dBodyID b2, const dContactGeom* contacts, int count, int skip,
                            const Settings& settings, std::vector<BodyPairContact>& points, std::vector<int>& kept) {
     kept.clear();
     bool severalPairs = false;
-    for (int i = 1; i < count && !severalPairs; ++i) {
+    for (int i = 1; i < count && !severalPairs; ++i) {  // count ≥ 2: contacts[0] exists
         const dContactGeom& first = at(contacts, 0, skip);
         const dContactGeom& c = at(contacts, i, skip);
         severalPairs = !((c.g1 == first.g1 && c.g2 == first.g2) || (c.g1 == first.g2 && c.g2 == first.g1));
@@ -110,15 +118,11 @@ void BodyPairContacts::deliver(void* data, ContactHandler handler) {
     if (settings_.maxBodyPairContacts > 0) {
         // The pairs of each pair of bodies, in the order added (two single-geom bodies touch
         // through one pair at most: they skip the table).
-        auto single = [](dBodyID body) {
-            const dGeomID first = body ? dBodyGetFirstGeom(body) : nullptr;
-            return first && !dBodyGetNextGeom(first);
-        };
         std::map<std::pair<dBodyID, dBodyID>, std::vector<std::size_t>> byBodies;
         std::vector<std::pair<dBodyID, dBodyID>> order;
         for (std::size_t i = 0; i < pairs_.size(); ++i) {
             dBodyID b1 = dGeomGetBody(pairs_[i].o1), b2 = dGeomGetBody(pairs_[i].o2);
-            if (b1 == b2 || (single(b1) && single(b2))) continue;
+            if (b1 == b2 || detail::bothHaveOneGeom(b1, b2)) continue;
             if (std::less<dBodyID>()(b2, b1)) std::swap(b1, b2);
             auto [entry, created] = byBodies.try_emplace({b1, b2});
             if (created) order.push_back({b1, b2});

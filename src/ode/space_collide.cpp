@@ -288,14 +288,10 @@ struct Scratch {
         bool any = false;
         // Two bodies of one geom each touch through one pair at most: most pairs of a pile skip
         // the table (a body against the static world may touch several static geoms).
-        auto single = [](dBodyID body) {
-            const dGeomID first = body ? dBodyGetFirstGeom(body) : nullptr;
-            return first && !dBodyGetNextGeom(first);
-        };
         for (std::size_t i = 0; i < n; ++i) {
             dBodyID b1 = dGeomGetBody(pairs[i].o1), b2 = dGeomGetBody(pairs[i].o2);
             if (b1 == b2) continue;  // static geoms (ODE lists no two geoms of one body)
-            if (single(b1) && single(b2)) continue;
+            if (detail::bothHaveOneGeom(b1, b2)) continue;
             if (std::less<dBodyID>()(b2, b1)) std::swap(b1, b2);
             const int index = static_cast<int>(i);
             auto [entry, created] = bodyPairs.try_emplace({b1, b2}, BodyPairLinks{index, index, 1});
