@@ -4,7 +4,8 @@
 Input, in the results directory: for every run SCENE_METHOD_BOXES.json (the summary a scene
 program writes with --summary) and .csv (its per-step measures, --csv); manifold_demo.txt and
 ode_stack.txt when present; SCENE_animation.gif from scripts/animate.py, or animations.txt saying
-why there are none. Plots use matplotlib (Debian's python3-matplotlib).
+why there are none. Plots use matplotlib (Debian's python3-matplotlib); numbers, tables, reading the runs and saving
+the plots come from scripts/gdcreport, shared with the other report scripts.
 
 The report answers first: a summary with one line per scene run (scene and box shape), each
 method's PASS/FAIL from the scene's own check and what gdcontact costs per step against ODE's
@@ -15,8 +16,6 @@ checks the summary against the runs.
 Usage: scripts/report.py RESULTS_DIR [--build BUILD_DIR] [--seconds N]
 """
 import argparse
-import csv
-import json
 import math
 import os
 import platform
@@ -25,8 +24,10 @@ import sys
 
 import matplotlib
 
-matplotlib.use("Agg")  # files only, no display
-import matplotlib.pyplot as plt  # noqa: E402
+from gdcreport import data, plots
+from gdcreport.numbers import fmt, ratio
+from gdcreport.plots import plt
+from gdcreport.tables import table, table_lines
 
 METHODS = ["gdc", "tracking", "ode"]
 METHOD_LABEL = {"gdc": "gdcontact", "tracking": "contact tracking", "ode": "ODE 0.16.2 native"}
@@ -47,44 +48,8 @@ LOG_FLOOR = 1e-18
 NOISE_MS = 0.05
 
 
-def load_runs(results):
-    runs = {}
-    for name in sorted(os.listdir(results)):
-        if not name.endswith(".json"):
-            continue
-        with open(os.path.join(results, name)) as f:
-            summary = json.load(f)
-        key = (summary["scene"], summary["method"], summary["boxes"])
-        series = {}
-        csv_path = os.path.join(results, name[:-5] + ".csv")
-        if os.path.exists(csv_path):
-            with open(csv_path) as f:
-                reader = csv.DictReader(f)
-                for row in reader:
-                    for column, text in row.items():
-                        series.setdefault(column, []).append(float(text))
-        if series.get("contacts"):
-            summary["mean_contacts"] = sum(series["contacts"]) / len(series["contacts"])
-        runs[key] = (summary, series)
-    return runs
-
-
-def fmt(value, digits=3):
-    if value is None or (isinstance(value, float) and math.isnan(value)):
-        return "–"
-    if value == 0:
-        return "0"
-    return f"{value:.{digits}g}"
-
-
 def floor_for_log(values):
     return [max(v, LOG_FLOOR) if not math.isnan(v) else float("nan") for v in values]
-
-
-def ratio(numerator, denominator):
-    if denominator <= 0:
-        return float("inf") if numerator > 0 else float("nan")
-    return numerator / denominator
 
 
 def method_order(method):
@@ -103,6 +68,14 @@ def scene_configurations(runs):
 
 def methods_of(runs, scene, boxes):
     return sorted((m for (s, m, b) in runs if s == scene and b == boxes), key=method_order)
+
+
+def scene_runs(runs, scene):
+    """(method, boxes, summary) of every run of the scene, in report order."""
+    for s, boxes in scene_configurations(runs):
+        if s == scene:
+            for method in methods_of(runs, scene, boxes):
+                yield method, boxes, runs[(scene, method, boxes)][0]
 
 
 def configuration_label(runs, scene, boxes):
@@ -159,10 +132,9 @@ def summary_section(runs, results):
     out.append("Checks passed: " + ", ".join(f"**{METHOD_LABEL[m]} {passes[m]} of {counts[m]}**" for m in columns)
                + ". Each scene's check is its own (the scene program's PASS/FAIL line); the number beside a "
                "verdict is what the check is about (column *measured*).\n")
-    header = ("| scene | measured | " + " | ".join(METHOD_LABEL[m] for m in columns)
-              + " | gdcontact ÷ ODE: collision ms/step | gdcontact ÷ ODE: whole step |")
-    out.append(header)
-    out.append("|---|---|" + "---|" * len(columns) + "---|---|")
+    header = (["scene", "measured"] + [METHOD_LABEL[m] for m in columns]
+              + ["gdcontact ÷ ODE: collision ms/step", "gdcontact ÷ ODE: whole step"])
+    rows = []
     like_for_like = []  # (collision ratio, step ratio, label, gdc run, ODE run) where both pass
     for scene, boxes in configurations:
         cells = []
@@ -179,9 +151,8 @@ def summary_section(runs, results):
                 like_for_like.append((collision, step, configuration_label(runs, scene, boxes), gdc[0], ode[0]))
         else:
             cost = ["–", "–"]
-        measured = HEADLINE.get(scene, ("",))[0]
-        out.append(f"| {configuration_label(runs, scene, boxes)} | {measured} | " + " | ".join(cells)
-                   + " | " + " | ".join(cost) + " |")
+        rows.append([configuration_label(runs, scene, boxes), HEADLINE.get(scene, ("",))[0]] + cells + cost)
+    out.extend(table_lines(header, rows))
     out.append("")
     notes = ["Cost: the mean wall-clock time per step of gdcontact's run divided by that of ODE's native "
              "colliders' run of the same scene and box shape — the collision pass (`dSpaceCollide` with its "
@@ -234,19 +205,13 @@ def compact_table(runs, scene, columns):
     """columns: (header, function of the summary returning text). One row per method and shape."""
     # The box shape gets a column only in scenes run with both.
     both = len({b for (s, _, b) in runs if s == scene}) > 1
-    rows = ["| method | " + ("boxes | " if both else "") + " | ".join(header for header, _ in columns) + " |",
-            "|---|" + ("---|" if both else "") + "---|" * len(columns)]
-    shown = []
-    for s, boxes in scene_configurations(runs):
-        if s != scene:
-            continue
-        for method in methods_of(runs, scene, boxes):
-            summary = runs[(scene, method, boxes)][0]
-            cells = [function(summary) for _, function in columns]
-            shape = f"{BOXES_LABEL.get(boxes, boxes)} | " if both else ""
-            rows.append(f"| {METHOD_LABEL.get(method, method)} | {shape}" + " | ".join(cells) + " |")
-            shown.append((method, boxes, summary))
-    return "\n".join(rows), shown
+    header = ["method"] + (["boxes"] if both else []) + [title for title, _ in columns]
+    rows, shown = [], []
+    for method, boxes, summary in scene_runs(runs, scene):
+        shape = [BOXES_LABEL.get(boxes, boxes)] if both else []
+        rows.append([METHOD_LABEL.get(method, method)] + shape + [function(summary) for _, function in columns])
+        shown.append((method, boxes, summary))
+    return table(header, rows), shown
 
 
 def verdict_cell(summary):
@@ -275,11 +240,7 @@ def identical_runs(runs, scene, method):
 # ---- plots
 def save_figure(figure, results, name):
     """Writes the figure to results/name, closes it and returns the file name for the report."""
-    figure.tight_layout()
-    path = os.path.join(results, name)
-    figure.savefig(path, dpi=110)
-    plt.close(figure)
-    return os.path.basename(path)
+    return os.path.basename(plots.save_figure(figure, os.path.join(results, name)))
 
 
 def line_style(method, points):
@@ -417,24 +378,17 @@ def command_output(command):
 
 
 def full_measures_table(runs, scene):
-    rows = [
-        "| method | boxes | solver | penetration max / mean (m) | alignment max / mean (rad) "
-        "| drift (m) | twist (rad) | sag (m) | oscillation (m/s) | collision / solver (ms per step) |",
-        "|---|---|---|---|---|---|---|---|---|---|",
-    ]
-    for s, boxes in scene_configurations(runs):
-        if s != scene:
-            continue
-        for method in methods_of(runs, scene, boxes):
-            summary = runs[(scene, method, boxes)][0]
-            solver = summary["stepper"] + (f" {summary['iterations']} it" if summary["stepper"] == "quick" else "")
-            rows.append(
-                f"| {METHOD_LABEL.get(method, method)} | {BOXES_LABEL.get(boxes, boxes)} | {solver}, dt {summary['dt']} "
-                f"| {fmt(summary['max_penetration'])} / {fmt(summary['mean_penetration'])} "
-                f"| {fmt(summary['max_alignment'])} / {fmt(summary['mean_alignment'])} | {fmt(summary['max_drift'])} "
-                f"| {fmt(summary['max_twist'])} | {fmt(summary['max_sag'])} | {fmt(summary['oscillation'])} "
-                f"| {fmt(summary['collision_ms'])} / {fmt(summary['solver_ms'])} |")
-    return "\n".join(rows)
+    header = ["method", "boxes", "solver", "penetration max / mean (m)", "alignment max / mean (rad)", "drift (m)",
+              "twist (rad)", "sag (m)", "oscillation (m/s)", "collision / solver (ms per step)"]
+    rows = []
+    for method, boxes, summary in scene_runs(runs, scene):
+        solver = summary["stepper"] + (f" {summary['iterations']} it" if summary["stepper"] == "quick" else "")
+        rows.append([METHOD_LABEL.get(method, method), BOXES_LABEL.get(boxes, boxes), f"{solver}, dt {summary['dt']}",
+                     f"{fmt(summary['max_penetration'])} / {fmt(summary['mean_penetration'])}",
+                     f"{fmt(summary['max_alignment'])} / {fmt(summary['mean_alignment'])}", fmt(summary["max_drift"]),
+                     fmt(summary["max_twist"]), fmt(summary["max_sag"]), fmt(summary["oscillation"]),
+                     f"{fmt(summary['collision_ms'])} / {fmt(summary['solver_ms'])}"])
+    return table(header, rows)
 
 
 def animation(results, scene):
@@ -471,7 +425,7 @@ def main():
     parser.add_argument("--seconds", type=float, default=None, help="wall time of the runs, for the report")
     arguments = parser.parse_args()
     results = arguments.results
-    runs = load_runs(results)
+    runs = data.load_scene_runs(results)
     if not runs:
         sys.exit(f"no scene results (*.json) in {results}")
 
@@ -573,13 +527,13 @@ def main():
     wall = [(m, b) for b in ("convex", "box") for m in METHODS if ("brick_wall", m, b) in runs]
     if wall:
         out.append("Brick wall: maximum displacement of the remaining bricks (mm) just before the next removal:\n")
-        out.append("| method | bricks | " + " | ".join(str(k) for k in range(1, 11)) + " |")
-        out.append("|---|---|" + "---|" * 10)
+        rows = []
         for method, boxes in wall:
             values = runs[("brick_wall", method, boxes)][0]["values"]
-            cells = [fmt(1e3 * values[f"after_removal_{k}"]) if f"after_removal_{k}" in values else "–"
-                     for k in range(1, 11)]
-            out.append(f"| {METHOD_LABEL[method]} | {BOXES_LABEL[boxes]} | " + " | ".join(cells) + " |")
+            rows.append([METHOD_LABEL[method], BOXES_LABEL[boxes]]
+                        + [fmt(1e3 * values[f"after_removal_{k}"]) if f"after_removal_{k}" in values else "–"
+                           for k in range(1, 11)])
+        out.extend(table_lines(["method", "bricks"] + [str(k) for k in range(1, 11)], rows))
         out.append("")
 
     # ---- solver warnings

@@ -1,0 +1,79 @@
+"""Reading the result files the benchmark and scene programs write, and writing a generated
+section between two marker lines of a hand-kept page (docs/benchmarks.md)."""
+import csv
+import json
+import os
+
+
+def read_csv(path):
+    """The rows of a CSV file with a header line, as dicts of text."""
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def read_columns(path):
+    """A CSV file of numbers as {column: [float, ...]} (a scene program's --csv per-step series)."""
+    columns = {}
+    for row in read_csv(path):
+        for column, text in row.items():
+            columns.setdefault(column, []).append(float(text))
+    return columns
+
+
+def read_json(path):
+    with open(path) as f:
+        return json.load(f)
+
+
+def read_key_values(path):
+    """KEY=VALUE lines (machine.txt, big_machine.txt) as a dict; {} when the file is absent."""
+    values = {}
+    if not os.path.exists(path):
+        return values
+    with open(path) as f:
+        for line in f:
+            if "=" in line:
+                key, value = line.rstrip("\n").split("=", 1)
+                values[key] = value
+    return values
+
+
+def load_scene_runs(results, with_series=True):
+    """{(scene, method, boxes): (summary, series)} from every SCENE_METHOD_BOXES.json a scene
+    program wrote with --summary, and its .csv (--csv) beside it when present: series is
+    {column: [float]} ({} without the CSV or with with_series=False). A run with a contacts
+    column gets summary["mean_contacts"]."""
+    runs = {}
+    for name in sorted(os.listdir(results)):
+        if not name.endswith(".json"):
+            continue
+        summary = read_json(os.path.join(results, name))
+        series = {}
+        csv_path = os.path.join(results, name[:-5] + ".csv")
+        if with_series and os.path.exists(csv_path):
+            series = read_columns(csv_path)
+        if series.get("contacts"):
+            summary["mean_contacts"] = sum(series["contacts"]) / len(series["contacts"])
+        runs[(summary["scene"], summary["method"], summary["boxes"])] = (summary, series)
+    return runs
+
+
+def marked_block(text, begin, end):
+    """The block from the line starting with `begin` to the `end` marker, both included; None when
+    the text lacks either."""
+    if begin not in text or end not in text:
+        return None
+    return text[text.index(begin):text.index(end) + len(end)]
+
+
+def splice(doc_path, begin, end, section):
+    """The page at doc_path (or a bare "# Benchmarks" page) with `section` between the marker lines
+    begin and end: replacing the block there, or appended after a blank line. The section is
+    followed by a blank line before whatever came after the old block."""
+    block = f"{begin}\n{section.rstrip()}\n{end}\n"
+    existing = open(doc_path).read() if os.path.exists(doc_path) else "# Benchmarks\n"
+    if marked_block(existing, begin, end) is None:
+        return existing.rstrip("\n") + "\n\n" + block
+    before = existing[:existing.index(begin)]
+    after = existing[existing.index(end) + len(end):].lstrip("\n")
+    return before + block + ("\n" + after if after else "")
