@@ -3,16 +3,18 @@
 results of `scripts/bench --big` (bench_big_world's big_world.csv and big_world_profile.csv, and
 big_machine.txt). The section sits between two marker lines; it replaces the one there, or is appended.
 bench/report.py (the full scripts/bench) keeps it when it rewrites the rest of the page.
-Every number in the section comes from these files; nothing is typed in by hand.
+Every number in the section comes from these files; nothing is typed in by hand. Numbers, tables,
+files and plots come from scripts/gdcreport, shared with the other report scripts.
 """
 import argparse
-import csv
 import os
+import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts"))
+from gdcreport import data, plots  # noqa: E402
+from gdcreport.numbers import fmt_ms as fmt, fmt_percent  # noqa: E402
+from gdcreport.plots import plt  # noqa: E402
+from gdcreport.tables import table_lines  # noqa: E402
 
 BEGIN = "<!-- big-worlds: begin (written by scripts/bench --big, bench/big_report.py) -->"
 END = "<!-- big-worlds: end -->"
@@ -25,22 +27,6 @@ CONTENDERS = [
     ("space_1t", "gdcontact: spaceCollide, 1 thread"),
     ("space_mt", "gdcontact: spaceCollide, every hardware thread"),
 ]
-
-
-def read_csv(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
-
-
-def fmt(ms):
-    ms = float(ms)
-    if ms >= 100:
-        return f"{ms:.0f}"
-    if ms >= 10:
-        return f"{ms:.1f}"
-    if ms >= 1:
-        return f"{ms:.2f}"
-    return f"{ms:.3f}"
 
 
 def cell(row):
@@ -86,18 +72,16 @@ def plot(table, path):
     ax.set_title("Collision time per step against bodies")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    plots.save_figure(fig, path)
 
 
 def section(results, machine):
-    rows = read_csv(os.path.join(results, "big_world.csv"))
+    rows = data.read_csv(os.path.join(results, "big_world.csv"))
     table = index(rows)
     profile_path = os.path.join(results, "big_world_profile.csv")
     profiles = {}
     if os.path.exists(profile_path):
-        for r in read_csv(profile_path):
+        for r in data.read_csv(profile_path):
             profiles.setdefault((r["world"], int(r["bodies"])), {})[r["contender"]] = r
     piles = sorted(b for (w, b) in table if w == "pile")
     threads = rows[0]["hardware_threads"] if rows else "?"
@@ -149,17 +133,13 @@ def section(results, machine):
                         "≤ 25 %", f"{100 * share:.0f} %", verdict(share <= 0.25)))
     if targets:
         out.append("Issue 15's targets, read off the tables below (benchmarks, not tests):\n")
-        out.append("| target | goal | measured | verdict |")
-        out.append("|---|---|---|---|")
-        for row in targets:
-            out.append("| " + " | ".join(row) + " |")
+        out.extend(table_lines(["target", "goal", "measured", "verdict"], targets))
         out.append("")
 
     # ---- collision against bodies
     out.append("### Collision ms per step against bodies\n")
     head = ["bodies", "steps (settling + measured)", "contacts per step"] + [label for _, label in CONTENDERS]
-    out.append("| " + " | ".join(head) + " |")
-    out.append("|" + "---|" * len(head))
+    rows = []
     for b in piles:
         t = table[("pile", b)]
         cells = [str(b), f"{t['ode']['settle_steps']} + {t['ode']['steps']}",
@@ -169,7 +149,8 @@ def section(results, machine):
             if contender + "_cache" in t:
                 c += f"; cache on: {cell(t[contender + '_cache'])}"
             cells.append(c)
-        out.append("| " + " | ".join(cells) + " |")
+        rows.append(cells)
+    out.extend(table_lines(head, rows))
     out.append("")
     out.append("![collision ms per step against bodies, log-log](images/bench_big_world.png)\n")
 
@@ -182,17 +163,17 @@ def section(results, machine):
     head = ["bodies", "loop ÷ ODE", "spaceCollide 1 thread ÷ ODE", f"spaceCollide {threads} threads ÷ ODE",
             f"… with the pair cache ÷ ODE", "pair cache hits", f"1 → {threads} threads, whole call",
             f"1 → {threads} threads, narrow phase", "bodies moving > 1 cm while measured"]
-    out.append("| " + " | ".join(head) + " |")
-    out.append("|" + "---|" * len(head))
+    rows = []
     for b in piles:
         key = ("pile", b)
         t = table[key]
         ode, broad = med(table, key, "ode"), med(table, key, "broad_phase")
         one, many = med(table, key, "space_1t"), med(table, key, "space_mt")
         narrow = (one - broad) / (many - broad) if many > broad else float("nan")
-        out.append(f"| {b} | {med(table, key, 'loop') / ode:.2f} | {one / ode:.2f} | {many / ode:.2f} | "
-                   f"{med(table, key, 'space_mt_cache') / ode:.2f} | {hit_rate(t['space_mt_cache'])} | "
-                   f"**{one / many:.2f}×** | **{narrow:.2f}×** | {t['ode']['moving_bodies']} |")
+        rows.append([b, f"{med(table, key, 'loop') / ode:.2f}", f"{one / ode:.2f}", f"{many / ode:.2f}",
+                     f"{med(table, key, 'space_mt_cache') / ode:.2f}", hit_rate(t["space_mt_cache"]),
+                     f"**{one / many:.2f}×**", f"**{narrow:.2f}×**", t["ode"]["moving_bodies"]])
+    out.extend(table_lines(head, rows))
     out.append("")
 
     # ---- whole step
@@ -202,16 +183,16 @@ def section(results, machine):
     head = ["bodies", "solver ms", "step with ODE's colliders", "collision share",
             f"step with spaceCollide, {threads} threads, pair cache", "collision share",
             "step with spaceCollide, 1 thread", "collision share"]
-    out.append("| " + " | ".join(head) + " |")
-    out.append("|" + "---|" * len(head))
+    rows = []
     for b in piles:
         key = ("pile", b)
         solver = med(table, key, "solver")
         cells = [str(b), fmt(solver)]
         for contender in ("ode", "space_mt_cache", "space_1t"):
             c = med(table, key, contender)
-            cells += [fmt(c + solver), f"{100 * c / (c + solver):.0f} %"]
-        out.append("| " + " | ".join(cells) + " |")
+            cells += [fmt(c + solver), fmt_percent(c / (c + solver))]
+        rows.append(cells)
+    out.extend(table_lines(head, rows))
     out.append("")
 
     # ---- resting structures
@@ -228,19 +209,18 @@ def section(results, machine):
         head = ["world", "bodies asleep", "ODE's broad phase alone, ms (÷ ODE's colliders)", "ODE's colliders, ms", "spaceCollide 1 thread, ms",
                 f"spaceCollide {threads} threads, ms", f"{threads} threads + pair cache, ms",
                 "1 thread + pair cache, ms", "pair cache hits", "best with the cache ÷ ODE", "verdict (≤ 0.5)"]
-        out.append("| " + " | ".join(head) + " |")
-        out.append("|" + "---|" * len(head))
+        rows = []
         for key in sorted(resting):
             t = table[key]
             ode = med(table, key, "ode")
             best = min(med(table, key, "space_mt_cache"), med(table, key, "space_1t_cache"))
             ratio = best / ode
             floor = med(table, key, "broad_phase")
-            out.append(f"| {key[0].replace('_', ' ')} | {t['ode']['sleeping_bodies']} of {key[1]} | "
-                       f"{cell(t['broad_phase'])} ({floor / ode:.2f}) | {cell(t['ode'])} | "
-                       f"{cell(t['space_1t'])} | {cell(t['space_mt'])} | {cell(t['space_mt_cache'])} | "
-                       f"{cell(t['space_1t_cache'])} | {hit_rate(t['space_mt_cache'])} | **{ratio:.2f}** | "
-                       f"{'met' if ratio <= 0.5 else 'missed'} |")
+            rows.append([key[0].replace("_", " "), f"{t['ode']['sleeping_bodies']} of {key[1]}",
+                         f"{cell(t['broad_phase'])} ({floor / ode:.2f})", cell(t["ode"]), cell(t["space_1t"]),
+                         cell(t["space_mt"]), cell(t["space_mt_cache"]), cell(t["space_1t_cache"]),
+                         hit_rate(t["space_mt_cache"]), f"**{ratio:.2f}**", "met" if ratio <= 0.5 else "missed"])
+        out.extend(table_lines(head, rows))
         out.append("")
 
     # ---- phases and Amdahl
@@ -260,19 +240,19 @@ def section(results, machine):
                 f"{threads} threads: call", "broad phase (pool working)", "after the broad phase", "handler",
                 "narrow, summed over threads", "of it on the calling thread",
                 "pool thread's first pair after (its wake-up), calls it joined"]
-        out.append("| " + " | ".join(head) + " |")
-        out.append("|" + "---|" * len(head))
+        rows = []
         for b in piles:
             p = profiles.get(("pile", b), {})
             one, many = p.get("profile_1t"), p.get("profile_mt")
             if not one or not many:
                 continue
             broad1 = float(one["broad_phase_ms"]) - float(one["narrow_ms"])
-            out.append(f"| {b} | {float(one['gdcontact_pairs']):.0f} + {float(one['other_pairs']):.0f} | "
-                       f"{fmt(one['total_ms'])} | {fmt(broad1)} | {fmt(one['narrow_ms'])} | {fmt(one['handler_ms'])} | "
-                       f"{fmt(many['total_ms'])} | {fmt(many['broad_phase_ms'])} | {fmt(many['drain_ms'])} | "
-                       f"{fmt(many['handler_ms'])} | {fmt(many['narrow_ms'])} | {fmt(many['narrow_on_caller_ms'])} | "
-                       f"{fmt(many['pool_start_ms'])} ms, {many['pool_joined_calls']} of {many['samples']} |")
+            rows.append([b, f"{float(one['gdcontact_pairs']):.0f} + {float(one['other_pairs']):.0f}",
+                         fmt(one["total_ms"]), fmt(broad1), fmt(one["narrow_ms"]), fmt(one["handler_ms"]),
+                         fmt(many["total_ms"]), fmt(many["broad_phase_ms"]), fmt(many["drain_ms"]),
+                         fmt(many["handler_ms"]), fmt(many["narrow_ms"]), fmt(many["narrow_on_caller_ms"]),
+                         f"{fmt(many['pool_start_ms'])} ms, {many['pool_joined_calls']} of {many['samples']}"])
+        out.extend(table_lines(head, rows))
         out.append("")
         # Amdahl at the largest pile (and at 1000, the issue's), from the unprofiled medians (the
         # profile's clock reads around every pair inflate a 1-thread narrow phase): the broad phase
@@ -304,14 +284,14 @@ def section(results, machine):
                        "so the call approaches the serial part itself once n − 1 threads keep up with the broad phase.\n")
             head = ["bodies", "1 thread, ms", "serial part", "parallel part (narrow)"] + \
                    [f"{n} cores: plain / overlapped" for n in lines[0][6]] + ["limit (serial part alone)"]
-            out.append("| " + " | ".join(head) + " |")
-            out.append("|" + "---|" * len(head))
+            table_rows = []
             for b, total, serial, narrow, broad, handler, cores, plain, overlap in lines:
                 cells = [str(b), fmt(total), f"{fmt(serial)} ({100 * serial / total:.0f} %; broad phase {fmt(broad)}, "
                                               f"handler {fmt(handler)})", f"{fmt(narrow)} ({100 * narrow / total:.0f} %)"]
                 cells += [f"{x:.2f}× / {y:.2f}×" for x, y in zip(plain, overlap)]
                 cells.append(f"{total / serial:.2f}×")
-                out.append("| " + " | ".join(cells) + " |")
+                table_rows.append(cells)
+            out.extend(table_lines(head, table_rows))
             out.append("")
             sentences = []
             for b, total, serial, narrow, broad, handler, cores, plain, overlap in lines:
@@ -328,33 +308,17 @@ def section(results, machine):
     return "\n".join(out)
 
 
-def splice(doc_path, text):
-    block = f"{BEGIN}\n{text}\n{END}\n"
-    existing = open(doc_path).read() if os.path.exists(doc_path) else "# Benchmarks\n"
-    if BEGIN in existing and END in existing:
-        before = existing[:existing.index(BEGIN)]
-        after = existing[existing.index(END) + len(END):].lstrip("\n")
-        return before + block + after
-    return existing.rstrip("\n") + "\n\n" + block
-
-
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--results", required=True)
     parser.add_argument("--docs", required=True)
     args = parser.parse_args()
-    machine = {}
-    path = os.path.join(args.results, "big_machine.txt")
-    if os.path.exists(path):
-        for line in open(path):
-            if "=" in line:
-                k, v = line.rstrip("\n").split("=", 1)
-                machine[k] = v
+    machine = data.read_key_values(os.path.join(args.results, "big_machine.txt"))
     os.makedirs(os.path.join(args.docs, "images"), exist_ok=True)
-    rows = read_csv(os.path.join(args.results, "big_world.csv"))
+    rows = data.read_csv(os.path.join(args.results, "big_world.csv"))
     plot(index(rows), os.path.join(args.docs, "images", "bench_big_world.png"))
     doc = os.path.join(args.docs, "benchmarks.md")
-    text = splice(doc, section(args.results, machine))
+    text = data.splice(doc, BEGIN, END, section(args.results, machine))
     with open(doc, "w") as f:
         f.write(text)
 

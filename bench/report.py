@@ -4,19 +4,21 @@
 Inputs (in --results): pairs.json (Google Benchmark, every round of every case), instructions.csv
 (bench/callgrind_counts.py), tradeoff.csv, scenes.csv, machine.txt and, when a profiler was
 available, profile-<case>.txt (perf report --children).
-Every number in the report comes from these files; nothing is typed in by hand.
+Every number in the report comes from these files; nothing is typed in by hand. Numbers, tables,
+files and plots come from scripts/gdcreport, shared with the other report scripts.
 """
 import argparse
-import csv
 import json
-import math
 import os
 import re
+import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts"))
+from gdcreport import data, numbers, plots  # noqa: E402
+from gdcreport.numbers import fmt_ns, median, number as num  # noqa: E402
+from gdcreport.numbers import fmt_count as fmt_contacts, fmt_instructions as fmt_instr  # noqa: E402
+from gdcreport.plots import plt  # noqa: E402
+from gdcreport.tables import table  # noqa: E402
 
 # ---- labels -------------------------------------------------------------------------------------
 
@@ -141,19 +143,13 @@ SHORT = {
 }
 
 
-def median(values):
-    v = sorted(values)
-    n = len(v)
-    return float("nan") if n == 0 else v[n // 2] if n % 2 else 0.5 * (v[n // 2 - 1] + v[n // 2])
-
-
 def load_pairs(path):
     """{(family, case, contender): (median cpu ns, contacts, min ns, max ns, rounds)} from Google
     Benchmark's JSON, in which bench_pairs --rounds N puts every benchmark N times."""
     with open(path) as f:
-        data = json.load(f)
+        benchmark = json.load(f)
     samples = {}
-    for b in data["benchmarks"]:
+    for b in benchmark["benchmarks"]:
         if b.get("run_type") == "aggregate":
             continue
         # family/case/contender, then "iterations:N" (bench_pairs fixes the iteration count).
@@ -167,20 +163,14 @@ def load_pairs(path):
         times = [t for t, _ in runs]
         results[key] = (median(times), median([c for _, c in runs]), min(times), max(times), len(times))
     rounds = max((r[4] for r in results.values()), default=0)
-    return data.get("context", {}), results, rounds
+    return benchmark.get("context", {}), results, rounds
 
 
 def load_instructions(path):
     """{(family, case, contender): instructions per call} from bench/callgrind_counts.py's CSV."""
     if not os.path.exists(path):
         return {}
-    return {(r["family"], r["case"], r["contender"]): num(r["instructions_per_call"]) for r in read_csv(path)}
-
-
-def fmt_instr(x):
-    if x != x:
-        return "–"
-    return f"{x / 1e3:.1f} k" if x >= 1e3 else f"{x:.0f}"
+    return {(r["family"], r["case"], r["contender"]): num(r["instructions_per_call"]) for r in data.read_csv(path)}
 
 
 def fmt_spread(entry):
@@ -195,50 +185,9 @@ def fmt_spread(entry):
     return f"{fmt_ns(ns)} [{low_text}–{' '.join(high)}]"
 
 
-def read_csv(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
-
-
-def num(text):
-    try:
-        return float(text)
-    except (TypeError, ValueError):
-        return float("nan")
-
-
-def fmt_ns(ns):
-    if ns != ns:
-        return "–"
-    if ns >= 1e6:
-        return f"{ns / 1e6:.2f} ms"
-    if ns >= 1e4:
-        return f"{ns / 1e3:.0f} µs"
-    if ns >= 1e3:
-        return f"{ns / 1e3:.2f} µs"
-    return f"{ns:.0f} ns"
-
-
-def fmt(x, digits=3):
-    if x != x:
-        return "–"
-    if x == 0:
-        return "0"
-    if abs(x) >= 100:
-        return f"{x:.0f}"
-    return f"{x:.{digits}g}"
-
-
-def fmt_contacts(c):
-    if c != c:
-        return "–"
-    return f"{c:.0f}" if abs(c - round(c)) < 1e-3 else f"{c:.2f}"
-
-
-def table(header, rows):
-    lines = ["| " + " | ".join(header) + " |", "|" + "|".join("---" for _ in header) + "|"]
-    lines += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
-    return "\n".join(lines)
+def fmt(x):
+    """Three significant digits, whole numbers from 100 up (a ratio of 123 rather than 1.23e+02)."""
+    return numbers.fmt(x, whole_from=100)
 
 
 # ---- sections -------------------------------------------------------------------------------------
@@ -488,13 +437,6 @@ def profile_section(results):
 # ---- plots ------------------------------------------------------------------------------------------
 
 
-def save_figure(fig, path):
-    """Writes the figure to path and closes it."""
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-
-
 def plot_pairs(pairs, path):
     keys = [(k, label) for k, label, _ in PAIR_CONTENDERS if any(("box_box", c, k) in pairs for c in PAIR_CASES)]
     fig, ax = plt.subplots(figsize=(11, 5))
@@ -508,7 +450,7 @@ def plot_pairs(pairs, path):
     ax.set_ylabel("CPU ns per call (median)")
     ax.set_title("Cube pair, 16 jittered poses per configuration")
     ax.legend(fontsize=7, ncol=2)
-    save_figure(fig, path)
+    plots.save_figure(fig, path)
 
 
 def plot_sizes(pairs, path):
@@ -526,7 +468,7 @@ def plot_sizes(pairs, path):
     ax.set_title("Cost growth with hull size (resting contact, 16 random poses)")
     ax.legend(fontsize=8)
     ax.grid(True, which="both", alpha=0.3)
-    save_figure(fig, path)
+    plots.save_figure(fig, path)
 
 
 def pareto_front(points):
@@ -587,7 +529,7 @@ def plot_pareto(rows, path):
     ax.set_ylabel("normal error vs exact minimum normal, p95 (°) + 1e-4")
     ax.set_title("Normal, 64-vertex hulls: settings (blue), ODE/Bullet (red), stage 1 alone (green)")
     ax.legend(fontsize=8)
-    save_figure(fig, path)
+    plots.save_figure(fig, path)
 
 
 def plot_scenes(scenes, path):
@@ -600,7 +542,7 @@ def plot_scenes(scenes, path):
     ax.set_ylabel("CPU ms per step")
     ax.set_title("Step time split")
     ax.legend(fontsize=8)
-    save_figure(fig, path)
+    plots.save_figure(fig, path)
 
 
 # ---- document -------------------------------------------------------------------------------------
@@ -611,16 +553,11 @@ def main():
     parser.add_argument("--results", required=True)
     parser.add_argument("--docs", required=True)
     args = parser.parse_args()
-    machine = {}
-    with open(os.path.join(args.results, "machine.txt")) as f:
-        for line in f:
-            if "=" in line:
-                k, v = line.rstrip("\n").split("=", 1)
-                machine[k] = v
+    machine = data.read_key_values(os.path.join(args.results, "machine.txt"))
     context, pairs, repetitions = load_pairs(os.path.join(args.results, "pairs.json"))
     instructions = load_instructions(os.path.join(args.results, "instructions.csv"))
-    tradeoff = read_csv(os.path.join(args.results, "tradeoff.csv"))
-    scenes = read_csv(os.path.join(args.results, "scenes.csv"))
+    tradeoff = data.read_csv(os.path.join(args.results, "tradeoff.csv"))
+    scenes = data.read_csv(os.path.join(args.results, "scenes.csv"))
     images = os.path.join(args.docs, "images")
     os.makedirs(images, exist_ok=True)
     plot_pairs(pairs, os.path.join(images, "bench_pairs.png"))
@@ -830,8 +767,9 @@ how far anything still moved while measured.
     if os.path.exists(path):
         old = open(path).read()
         for begin, end in kept_blocks:
-            if begin in old and end in old:
-                doc = doc.rstrip("\n") + "\n\n" + old[old.index(begin):old.index(end) + len(end)] + "\n"
+            block = data.marked_block(old, begin, end)
+            if block is not None:
+                doc = doc.rstrip("\n") + "\n\n" + block + "\n"
     with open(path, "w") as f:
         f.write(doc)
 

@@ -6,22 +6,21 @@ solver_seeds_scenes.csv, solver_seeds_limits.csv and solver_seeds_command.txt, a
 bench_solver_seeds --out RESULTS_DIR writes them. Output: the Markdown section "Solver over seeds"
 (appended to --append FILE, or written to --markdown FILE) and RESULTS_DIR/solver_seeds.png, the
 stability of each contender against its whole-step cost on identical states, one panel per scene.
-Plots use matplotlib (Debian's python3-matplotlib), drawn as scripts/report.py draws.
+Plots use matplotlib (Debian's python3-matplotlib), drawn as scripts/report.py draws; numbers,
+tables, files and plots come from scripts/gdcreport, shared with the other report scripts.
 
 Usage: scripts/solver_seeds_report.py RESULTS_DIR [--append REPORT_MD] [--markdown OUT_MD] [--docs DOCS_DIR]
                                       [--plot-link PATH] [--heading-level N]
 """
 import argparse
-import csv
 import math
 import os
 import shutil
 
-import matplotlib
-
-matplotlib.use("Agg")  # files only, no display
-import matplotlib.pyplot as plt  # noqa: E402
-import matplotlib.ticker as ticker  # noqa: E402
+from gdcreport import data, plots
+from gdcreport.numbers import fmt, number
+from gdcreport.plots import plt
+from gdcreport.tables import table_lines
 
 STEPPER_ORDER = ["quick10", "quick20", "quick50", "world"]
 STEPPER_LABEL = {"quick10": "QuickStep 10 it.", "quick20": "QuickStep 20 it.", "quick50": "QuickStep 50 it.",
@@ -30,27 +29,6 @@ STEPPER_MARKER = {"quick10": "v", "quick20": "o", "quick50": "^", "world": "s"}
 CONTENDER_LABEL = {"gdc": "gdcontact", "ode-box": "ODE dBox", "ode-convex": "ODE dConvex"}
 BASE_COLOURS = {"gdc": "tab:blue", "ode-box": "tab:green", "ode-convex": "tab:red"}
 VARIANT_COLOURS = ["tab:purple", "tab:orange", "tab:brown", "tab:pink", "tab:olive", "tab:cyan", "tab:gray"]
-
-
-def number(text):
-    try:
-        value = float(text)
-    except (TypeError, ValueError):
-        return math.nan
-    return value
-
-
-def fmt(value, digits=3):
-    if value is None or (isinstance(value, float) and math.isnan(value)):
-        return "–"
-    if value == 0:
-        return "0"
-    return f"{value:.{digits}g}"
-
-
-def read_csv(path):
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
 
 
 def contender_order(name):
@@ -102,9 +80,7 @@ def plot(rows, scenes, results):
                         markeredgecolor="black", markeredgewidth=0.5, zorder=2 if big else 3)
         ax.set_xscale("log")
         # Ticks at 1, 2 and 5 of each decade, labelled plainly; no labels on the minor ticks (they overlapped).
-        ax.xaxis.set_major_locator(ticker.LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
-        ax.xaxis.set_major_formatter(ticker.FuncFormatter(lambda value, _: f"{value:g}"))
-        ax.xaxis.set_minor_formatter(ticker.NullFormatter())
+        plots.plain_log_ticks(ax.xaxis)
         ax.set_ylim(-0.05, 1.05)
         ax.set_title(scene, fontsize=10)
         ax.grid(True, which="both", alpha=0.3)
@@ -122,17 +98,14 @@ def plot(rows, scenes, results):
     figure.suptitle("Stability over seeds against the cost of a step (bars: 95 % Wilson interval)", fontsize=11)
     height = 3.3 * lines + 1.2
     figure.tight_layout(rect=(0, 0.75 / height, 1, 1 - 0.45 / height))  # room for the legend and the title
-    path = os.path.join(results, "solver_seeds.png")
-    figure.savefig(path, dpi=100)
-    plt.close(figure)
-    return path
+    return plots.save_figure(figure, os.path.join(results, "solver_seeds.png"), dpi=100, tight=False)
 
 
 def section(results, plot_link, level, reproduce=None):
     h = "#" * level
-    rows = read_csv(os.path.join(results, "solver_seeds_summary.csv"))
-    scenes = read_csv(os.path.join(results, "solver_seeds_scenes.csv"))
-    limits = read_csv(os.path.join(results, "solver_seeds_limits.csv"))
+    rows = data.read_csv(os.path.join(results, "solver_seeds_summary.csv"))
+    scenes = data.read_csv(os.path.join(results, "solver_seeds_scenes.csv"))
+    limits = data.read_csv(os.path.join(results, "solver_seeds_limits.csv"))
     with open(os.path.join(results, "solver_seeds_command.txt")) as f:
         command = f.read().strip().splitlines()
     out = [f"{h} Solver over seeds\n"]
@@ -148,15 +121,13 @@ def section(results, plot_link, level, reproduce=None):
                + (f". Reproduce: `{reproduce}`." if reproduce else "") + "\n")
     out.append("Failure limits (one table, `failureLimits()` in bench/solver_seeds/solver_seeds.cpp); a run fails when "
                "a limit is crossed and still crossed at the end of the run, or at once when it explodes:\n")
-    out.append("| failure | scenes | rule |\n|---|---|---|")
-    for l in limits:
-        out.append(f"| {l['failure']} | {l['scenes']} | {l['rule']} |")
+    out.extend(table_lines(["failure", "scenes", "rule"], [[l["failure"], l["scenes"], l["rule"]] for l in limits]))
     out.append("")
     out.append("Scenes (simulated seconds per run; seeds per stepper; where `dWorldStep` is not run, why):\n")
-    out.append("| scene | what | s | seeds (QuickStep) | seeds (dWorldStep) |\n|---|---|---|---|---|")
-    for s in scenes:
-        world = s["world_seeds"] if s["world_step"] == "1" else f"not run: {s['world_skip_reason']}"
-        out.append(f"| {s['scene']} | {s['description']} | {fmt(number(s['seconds']))} | {s['seeds']} | {world} |")
+    out.extend(table_lines(["scene", "what", "s", "seeds (QuickStep)", "seeds (dWorldStep)"],
+                           [[s["scene"], s["description"], fmt(number(s["seconds"])), s["seeds"],
+                             s["world_seeds"] if s["world_step"] == "1" else f"not run: {s['world_skip_reason']}"]
+                            for s in scenes]))
     out.append("")
     out.append("Columns: *fail* = fraction of seeds failing [95 % Wilson interval] and why; *drift* = the largest "
                "horizontal distance of a body from its start at the end, median / 90th percentile / max over seeds "
@@ -181,7 +152,7 @@ def section(results, plot_link, level, reproduce=None):
     paired = {}
     runs_path = os.path.join(results, "solver_seeds_runs.csv")
     if os.path.exists(runs_path):
-        failed = {(r["scene"], r["stepper"], r["contender"], r["seed"]): r["failed"] == "1" for r in read_csv(runs_path)}
+        failed = {(r["scene"], r["stepper"], r["contender"], r["seed"]): r["failed"] == "1" for r in data.read_csv(runs_path)}
         for (scene, stepper, contender, seed), gdc_failed in failed.items():
             if contender != "gdc" or (scene, stepper, "ode-box", seed) not in failed:
                 continue
@@ -193,8 +164,7 @@ def section(results, plot_link, level, reproduce=None):
                "**whole step on identical states ÷ the best ODE option** (named in the next column); the last column "
                "pairs the seeds of gdcontact and ODE dBox: seeds where gdcontact fails and dBox stands / where dBox "
                "fails and gdcontact stands:\n")
-    out.append("| scene | stepper | " + " | ".join(contender_label(c) for c in contenders) + " | best ODE option | gdc-only / dBox-only failures |")
-    out.append("|---|---|" + "---|" * len(contenders) + "---|---|")
+    overview = []
     for sc in scenes:
         for stepper in STEPPER_ORDER:
             present = [index.get((sc["scene"], stepper, c)) for c in contenders]
@@ -209,8 +179,9 @@ def section(results, plot_link, level, reproduce=None):
                 cells.append(f"{fmt(number(r['fail_fraction']), 2)}" + (f" ({fmt(ratio, 2)}×)" if not math.isnan(ratio) else ""))
                 best = best or contender_label(r["best_ode"]) if r["best_ode"] else best
             pair = paired.get((sc["scene"], stepper))
-            out.append(f"| {sc['scene']} | {STEPPER_LABEL[stepper]} | " + " | ".join(cells) + f" | {best} | "
-                       + (f"{pair[0]} / {pair[1]}" if pair else "–") + " |")
+            overview.append([sc["scene"], STEPPER_LABEL[stepper]] + cells + [best, f"{pair[0]} / {pair[1]}" if pair else "–"])
+    out.extend(table_lines(["scene", "stepper"] + [contender_label(c) for c in contenders]
+                           + ["best ODE option", "gdc-only / dBox-only failures"], overview))
     out.append("")
     if plot_link:
         out.append(f"![stability against cost per scene]({plot_link})\n")
@@ -222,9 +193,7 @@ def section(results, plot_link, level, reproduce=None):
         if name not in by_scene:
             continue
         out.append(f"{h}# {name}: {s['description']}\n")
-        out.append("| stepper | contender | fail | drift p50 / p90 / max | contacts | coll. ms | solver ms | asleep | msgs "
-                   "| identical states: coll. + solver ms | ÷ best ODE |")
-        out.append("|---|---|---|---|---|---|---|---|---|---|---|")
+        table_rows = []
         scene_rows = sorted(by_scene[name], key=lambda r: (STEPPER_ORDER.index(r["stepper"]) if r["stepper"] in STEPPER_ORDER
                                                            else 9, contender_order(r["contender"])))
         for r in scene_rows:
@@ -238,27 +207,18 @@ def section(results, plot_link, level, reproduce=None):
                                                        f"{fmt(number(r['cost_solver_ms']), 2)} = {fmt(cost, 3)}")
             ratio = number(r["ratio_to_best_ode"])
             best = f"{fmt(ratio, 2)}× {r['best_ode']}" if not math.isnan(ratio) else "–"
-            out.append(f"| {STEPPER_LABEL.get(r['stepper'], r['stepper'])} | {contender_label(r['contender'])} | {fail} | {drift} "
-                       f"| {fmt(number(r['contacts_per_step']), 3)} | {fmt(number(r['collision_ms']), 2)} "
-                       f"| {fmt(number(r['solver_ms']), 2)} | {asleep} | {msgs} | {identical} | {best} |")
+            table_rows.append([STEPPER_LABEL.get(r["stepper"], r["stepper"]), contender_label(r["contender"]), fail, drift,
+                               fmt(number(r["contacts_per_step"]), 3), fmt(number(r["collision_ms"]), 2),
+                               fmt(number(r["solver_ms"]), 2), asleep, msgs, identical, best])
+        out.extend(table_lines(["stepper", "contender", "fail", "drift p50 / p90 / max", "contacts", "coll. ms",
+                                "solver ms", "asleep", "msgs", "identical states: coll. + solver ms", "÷ best ODE"],
+                               table_rows))
         out.append("")
     return "\n".join(out) + "\n", rows, scenes
 
 
 BEGIN = "<!-- solver-seeds: begin (written by scripts/solver_seeds, scripts/solver_seeds_report.py) -->"
 END = "<!-- solver-seeds: end -->"
-
-
-def splice(doc_path, text):
-    """The section between its two marker lines of docs/benchmarks.md, replaced or appended (as
-    bench/big_report.py places the Big worlds section; bench/report.py keeps both)."""
-    block = f"{BEGIN}\n{text.rstrip()}\n{END}\n"
-    existing = open(doc_path).read() if os.path.exists(doc_path) else "# Benchmarks\n"
-    if BEGIN in existing and END in existing:
-        before = existing[:existing.index(BEGIN)]
-        after = existing[existing.index(END) + len(END):].lstrip("\n")
-        return before + block + ("\n" + after if after else "")
-    return existing.rstrip("\n") + "\n\n" + block
 
 
 def main():
@@ -280,7 +240,9 @@ def main():
         os.makedirs(os.path.join(args.docs, "images"), exist_ok=True)
         shutil.copyfile(path, os.path.join(args.docs, "images", "bench_solver_seeds.png"))
         doc = os.path.join(args.docs, "benchmarks.md")
-        spliced = splice(doc, text)
+        # Between its two marker lines of docs/benchmarks.md, replaced or appended (as bench/big_report.py
+        # places the Big worlds section; bench/report.py keeps both).
+        spliced = data.splice(doc, BEGIN, END, text)
         with open(doc, "w") as f:
             f.write(spliced)
     if args.append:
