@@ -21,6 +21,9 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts"))
+from gdcreport import data  # noqa: E402
+
 
 def read_dumps(directory):
     """{dump name: instructions} from the callgrind.out.N files of one run."""
@@ -58,8 +61,7 @@ def main():
     subprocess.run(command, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
 
     counts = read_dumps(work)
-    with open(manifest) as f:
-        rows = list(csv.DictReader(f))
+    rows = data.read_csv(manifest)
     overhead = 0.0
     for r in rows:
         if r["family"] == "loop":

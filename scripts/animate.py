@@ -5,15 +5,14 @@ For every scene run that scripts/run made (SCENE_METHOD_BOXES.json in the result
 viewer replays the same scene headless (`--scripted`, the same scripted user as the headless run)
 and writes every K-th frame as PNG (`--record-every K --record-dir DIR`); the frames of the three
 methods are put side by side under a label (method, the run's own PASS/FAIL, time) and written as
-SCENE_animation.gif. Needs an X server in DISPLAY (scripts/run starts this script under xvfb-run)
-and Pillow (Debian's python3-pil, which python3-matplotlib pulls in).
+SCENE_animation.gif (scripts/gdcreport/gifs.py). Needs an X server in DISPLAY (scripts/run starts
+this script under xvfb-run) and Pillow (Debian's python3-pil, which python3-matplotlib pulls in).
 
 Usage: scripts/animate.py RESULTS_DIR --viewer PATH [--frames 40] [--size 480x270] [--jobs 2] [--keep-frames]
 """
 import argparse
 import concurrent.futures
 import glob
-import json
 import math
 import os
 import shutil
@@ -21,7 +20,8 @@ import subprocess
 import sys
 import time
 
-from PIL import Image, ImageDraw, ImageFont
+from gdcreport import data
+from gdcreport.gifs import side_by_side_gif
 
 METHODS = ["gdc", "tracking", "ode"]
 METHOD_LABEL = {"gdc": "gdcontact", "tracking": "contact tracking", "ode": "ODE native"}
@@ -29,7 +29,6 @@ METHOD_LABEL = {"gdc": "gdcontact", "tracking": "contact tracking", "ode": "ODE 
 # dConvex bricks is the one ODE's own convex collider fails; with dBox bricks all three stand.
 ANIMATIONS = [("box_drop", "box"), ("tower", "box"), ("brick_wall", "convex"), ("composites", "box")]
 FRAME_RATE = 60.0  # the viewer's headless frames advance 1/60 s of simulated time each
-LABEL_HEIGHT = 22
 
 
 def run_viewer(viewer, results, scene, method, boxes, frames, every, size):
@@ -47,44 +46,6 @@ def run_viewer(viewer, results, scene, method, boxes, frames, every, size):
     if done.returncode != 0:
         return directory, seconds, f"{' '.join(command)} exited with {done.returncode}: {done.stderr.strip()[-300:]}"
     return directory, seconds, None
-
-
-def label_font():
-    # DejaVu ships with matplotlib (and in fonts-dejavu-core); Pillow's bitmap font is the fallback.
-    try:
-        import matplotlib
-        path = os.path.join(matplotlib.get_data_path(), "fonts", "ttf", "DejaVuSans.ttf")
-        return ImageFont.truetype(path, 14)
-    except (ImportError, OSError):
-        return ImageFont.load_default()
-
-
-def compose(panels, labels, times, out_path, frame_seconds):
-    """panels: per method a list of PNG paths (same count); writes the side-by-side GIF."""
-    font = label_font()
-    count = min(len(p) for p in panels)
-    first = Image.open(panels[0][0])
-    width, height = first.size
-    frames = []
-    for index in range(count):
-        sheet = Image.new("RGB", (width * len(panels), height + LABEL_HEIGHT), "white")
-        draw = ImageDraw.Draw(sheet)
-        for column, (paths, (text, colour)) in enumerate(zip(panels, labels)):
-            sheet.paste(Image.open(paths[index]).convert("RGB"), (column * width, LABEL_HEIGHT))
-            draw.text((column * width + 6, 3), text, fill=colour, font=font)
-            if column:
-                draw.line([(column * width, 0), (column * width, height + LABEL_HEIGHT)], fill="white", width=2)
-        clock = f"t = {times[index]:4.1f} s"
-        draw.text((width * len(panels) - 6 - draw.textlength(clock, font=font), 3), clock, fill="black", font=font)
-        # One shared palette for the whole animation keeps the file small and stops flicker.
-        frames.append(sheet)
-    palette = frames[len(frames) // 2].quantize(colors=255, method=Image.Quantize.MEDIANCUT)
-    quantized = [f.quantize(palette=palette, dither=Image.Dither.NONE) for f in frames]
-    # Show each frame for its share of the scene (sped up so the whole scene takes a few seconds),
-    # and hold the last one so the end state can be read.
-    durations = [frame_seconds * 1000] * (len(quantized) - 1) + [2000]
-    quantized[0].save(out_path, save_all=True, append_images=quantized[1:], duration=durations, loop=0,
-                      optimize=True)
 
 
 def main():
@@ -106,8 +67,7 @@ def main():
         for method in METHODS:
             path = os.path.join(arguments.results, f"{scene}_{method}_{boxes}.json")
             if os.path.exists(path):
-                with open(path) as f:
-                    runs[method] = json.load(f)
+                runs[method] = data.read_json(path)
         if not runs:
             continue
         # As long as the headless run: its steps × dt, in 1/60 s viewer frames.
@@ -147,7 +107,7 @@ def main():
             indices.append(total - 1)
         times = [(f + 1) / FRAME_RATE for f in indices]
         out = os.path.join(arguments.results, f"{scene}_animation.gif")
-        compose(panels, labels, times, out, arguments.playback_seconds / max(len(times), 1))
+        side_by_side_gif(panels, labels, times, out, arguments.playback_seconds / max(len(times), 1))
         if not arguments.keep_frames:
             for method in runs:
                 shutil.rmtree(recorded[(scene, method)][0], ignore_errors=True)

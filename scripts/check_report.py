@@ -10,11 +10,12 @@ with the reasons on stderr; scripts/run and CTest (tests/report) run it.
 Usage: scripts/check_report.py RESULTS_DIR [--scenes box_drop,tower,brick_wall,composites]
 """
 import argparse
-import json
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from gdcreport import data  # noqa: E402
+from gdcreport.tables import parse_table  # noqa: E402
 from report import BOXES_LABEL, METHOD_LABEL, SCENE_TITLE, SCENES, SUMMARY_HEADING  # noqa: E402
 
 
@@ -25,27 +26,20 @@ def summary_table(report_text):
         start = lines.index(SUMMARY_HEADING)
     except ValueError:
         raise SystemExit(f"no '{SUMMARY_HEADING}' section in the report")
-    rows = []
+    section = []
     for line in lines[start + 1:]:
         if line.startswith("## "):
             break
-        if line.startswith("|"):
-            rows.append([cell.strip() for cell in line.strip().strip("|").split("|")])
-        elif rows:
-            break  # the table ended
-    if len(rows) < 2:
+        section.append(line)
+    rows = parse_table(section)  # without the |---| line
+    if not rows:
         raise SystemExit("the summary has no table")
-    return [rows[0]] + [row for row in rows[2:]]  # without the |---| line
+    return rows
 
 
 def check(results, scenes):
     problems = []
-    runs = {}
-    for name in sorted(os.listdir(results)):
-        if name.endswith(".json"):
-            with open(os.path.join(results, name)) as f:
-                summary = json.load(f)
-            runs[(summary["scene"], summary["method"], summary["boxes"])] = summary["success"]
+    runs = {key: summary["success"] for key, (summary, _) in data.load_scene_runs(results, with_series=False).items()}
     if not runs:
         return [f"no runs (*.json) in {results}"]
     with open(os.path.join(results, "report.md")) as f:
