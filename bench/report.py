@@ -482,10 +482,13 @@ def pareto_front(points):
     return sorted(front, key=lambda i: points[i][0])
 
 
-def plot_pareto(rows, path):
+def pareto_figure(rows):
+    """The speed/accuracy plots: (figure, [(axes, annotations, marker points)], texts left unlabelled).
+    Each point's label is placed where it covers no other label or marker (gdcreport.plots.place_labels),
+    with a leader line when it sits away from its point; coinciding points share one label."""
     manifold = [r for r in rows if r["table"] == "manifold"]
     normal = [r for r in rows if r["table"] == "normal"]
-    fig, axes = plt.subplots(1, 2, figsize=(14, 6))
+    fig, axes = plt.subplots(1, 2, figsize=(16, 8), dpi=plots.DPI)
 
     def label_of(r):
         if r["group"] == "settings":
@@ -497,18 +500,18 @@ def plot_pareto(rows, path):
     pts = [(num(r["time_ns"]), 0.5 * (num(r["flat_hausdorff_mean_mm"]) + num(r["tilted_hausdorff_mean_mm"])) + 1e-3)
            for r in manifold]
     front = pareto_front(pts)
+    left = []  # (x, y, label, colour) of every point
     for i, (r, (t, e)) in enumerate(zip(manifold, pts)):
-        ax.scatter(t, e, marker="o" if r["group"] == "settings" else "s",
-                   color="tab:blue" if r["group"] == "settings" else "tab:red", s=25)
-        if i in front or r["group"] != "settings" or e > 100:  # keep the labels readable
-            ax.annotate(label_of(r), (t, e), fontsize=6, xytext=(3, 2), textcoords="offset points")
+        color = "tab:blue" if r["group"] == "settings" else "tab:red"
+        ax.scatter(t, e, marker="o" if r["group"] == "settings" else "s", color=color, s=25)
+        left.append((t, e, label_of(r), color))
     ax.plot([pts[i][0] for i in front], [pts[i][1] for i in front], color="gray", linestyle=":", label="Pareto front")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("CPU ns per cube pair")
     ax.set_ylabel("contact polygon error, mean Hausdorff (mm) + 0.001")
     ax.set_title("Manifold: gdcontact Settings (blue) vs ODE / Bullet (red)")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="lower right")
 
     # Right: normal error on the 64-vertex hulls against time on them (where stage-1 settings matter),
     # full manifolds and stage 1 alone.
@@ -516,20 +519,41 @@ def plot_pareto(rows, path):
     rows2 = [r for r in manifold + normal if r["hull_time_ns"] and r["hull_normal_p95_deg"]]
     pts2 = [(num(r["hull_time_ns"]), num(r["hull_normal_p95_deg"]) + 1e-4) for r in rows2]
     front = pareto_front(pts2)
+    right = []
     for i, (r, (t, e)) in enumerate(zip(rows2, pts2)):
         color = "tab:green" if r["table"] == "normal" else ("tab:blue" if r["group"] == "settings" else "tab:red")
         ax.scatter(t, e, color=color, s=25, marker="^" if r["table"] == "normal" else "o")
-        if i in front or r["group"] != "settings":  # label the front and the other colliders only
-            ax.annotate(r["value"] if r["table"] == "normal" else label_of(r), (t, e), fontsize=6, xytext=(3, 2),
-                        textcoords="offset points")
+        # Label the front and the other colliders only: the settings off the front are the left plot's.
+        shown = i in front or r["group"] != "settings"
+        right.append((t, e, (r["value"] if r["table"] == "normal" else label_of(r)) if shown else None, color))
     ax.plot([pts2[i][0] for i in front], [pts2[i][1] for i in front], color="gray", linestyle=":", label="Pareto front")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("CPU ns per 64-vertex hull pair")
     ax.set_ylabel("normal error vs exact minimum normal, p95 (°) + 1e-4")
     ax.set_title("Normal, 64-vertex hulls: settings (blue), ODE/Bullet (red), stage 1 alone (green)")
-    ax.legend(fontsize=8)
-    plots.save_figure(fig, path)
+    ax.legend(fontsize=8, loc="upper right")
+
+    for ax in axes:
+        ax.margins(0.1)  # room for labels at the edges
+    fig.tight_layout()  # the labels are placed for this layout: save without re-laying it out
+    labelled, unplaced = [], []
+    for ax, points in zip(axes, (left, right)):
+        # The defaults and the other colliders first: they get the spots nearest their points.
+        points = sorted(points, key=lambda p: not (p[2] in ("defaults", "growth distance (paper, default settings)")
+                                                   or p[3] == "tab:red"))
+        xs, ys, texts, colours = zip(*points) if points else ((), (), (), ())
+        annotations, missed = plots.place_labels(ax, xs, ys, texts, colours=colours)
+        labelled.append((ax, annotations, (xs, ys)))
+        unplaced += missed
+    return fig, labelled, unplaced
+
+
+def plot_pareto(rows, path):
+    fig, _, unplaced = pareto_figure(rows)
+    if unplaced:
+        print(f"bench/report.py: no room for the labels {unplaced} in {path}", file=sys.stderr)
+    plots.save_figure(fig, path, tight=False)
 
 
 def plot_scenes(scenes, path):
