@@ -71,7 +71,10 @@ def splice(doc_path, begin, end, section):
     begin and end: replacing the block there, or appended after a blank line. The section is
     followed by a blank line before whatever came after the old block."""
     block = f"{begin}\n{section.rstrip()}\n{end}\n"
-    existing = open(doc_path).read() if os.path.exists(doc_path) else "# Benchmarks\n"
+    existing = "# Benchmarks\n"
+    if os.path.exists(doc_path):
+        with open(doc_path) as f:
+            existing = f.read()
     if marked_block(existing, begin, end) is None:
         return existing.rstrip("\n") + "\n\n" + block
     before = existing[:existing.index(begin)]

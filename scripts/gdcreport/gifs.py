@@ -34,13 +34,15 @@ def side_by_side_gif(panels, labels, times, path, frame_seconds):
     at the top right. Writes the GIF to path, each frame shown frame_seconds."""
     font = label_font()
     count = min(len(p) for p in panels)
-    width, height = Image.open(panels[0][0]).size
+    with Image.open(panels[0][0]) as first:
+        width, height = first.size
     frames = []
     for index in range(count):
         sheet = Image.new("RGB", (width * len(panels), height + LABEL_HEIGHT), "white")
         draw = ImageDraw.Draw(sheet)
         for column, (paths, (text, colour)) in enumerate(zip(panels, labels)):
-            sheet.paste(Image.open(paths[index]).convert("RGB"), (column * width, LABEL_HEIGHT))
+            with Image.open(paths[index]) as frame:
+                sheet.paste(frame.convert("RGB"), (column * width, LABEL_HEIGHT))
             draw.text((column * width + 6, 3), text, fill=colour, font=font)
             if column:
                 draw.line([(column * width, 0), (column * width, height + LABEL_HEIGHT)], fill="white", width=2)

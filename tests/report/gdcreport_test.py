@@ -1,0 +1,184 @@
+#!/usr/bin/env python3
+"""scripts/gdcreport, the package the report scripts share: number formats, Markdown tables, the
+marker splice, GIF writing, and the label placer, whose labels must not overlap one another, a
+marker, the legend or the axes' edge — on a crowded made-up cluster and on the speed/accuracy
+(Pareto) plot of bench/report.py drawn from a real `bench_tradeoff --quick` output
+(data/tradeoff_quick.csv). Overlap is measured as a reader sees it: the labels' text boxes from
+matplotlib's renderer.
+"""
+import importlib.util
+import math
+import os
+import random
+import shutil
+import sys
+import tempfile
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.join(HERE, "..", "..")
+sys.path.insert(0, os.path.join(REPO, "scripts"))
+from gdcreport import data, numbers, plots, tables  # noqa: E402
+from gdcreport.plots import plt  # noqa: E402
+
+
+def bench_report():
+    """bench/report.py as a module (its name would clash with scripts/report.py)."""
+    spec = importlib.util.spec_from_file_location("bench_report", os.path.join(REPO, "bench", "report.py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+class Numbers(unittest.TestCase):
+    def test_fmt(self):
+        self.assertEqual(numbers.fmt(None), "–")
+        self.assertEqual(numbers.fmt(math.nan), "–")
+        self.assertEqual(numbers.fmt(0.0), "0")
+        self.assertEqual(numbers.fmt(0.0123456), "0.0123")
+        self.assertEqual(numbers.fmt(1234.5), "1.23e+03")
+        self.assertEqual(numbers.fmt(1234.5, whole_from=100), "1234")
+        self.assertEqual(numbers.fmt(99.94, whole_from=100), "99.9")
+        self.assertEqual(numbers.fmt(0.123456, 2), "0.12")
+
+    def test_units(self):
+        self.assertEqual(numbers.fmt_ns(512.4), "512 ns")
+        self.assertEqual(numbers.fmt_ns(1234.0), "1.23 µs")
+        self.assertEqual(numbers.fmt_ns(12345.0), "12 µs")
+        self.assertEqual(numbers.fmt_ns(2.5e6), "2.50 ms")
+        self.assertEqual(numbers.fmt_ns(math.nan), "–")
+        self.assertEqual([numbers.fmt_ms(x) for x in (123.4, 12.34, 1.234, 0.1234)], ["123", "12.3", "1.23", "0.123"])
+        self.assertEqual(numbers.fmt_ms("0.5"), "0.500")
+        self.assertEqual(numbers.fmt_instructions(12345.0), "12.3 k")
+        self.assertEqual(numbers.fmt_instructions(999.4), "999")
+        self.assertEqual(numbers.fmt_count(4.0004), "4")
+        self.assertEqual(numbers.fmt_count(4.25), "4.25")
+        self.assertEqual(numbers.fmt_percent(0.256), "26 %")
+
+    def test_median_ratio_number(self):
+        self.assertEqual(numbers.median([3, 1, 2]), 2)
+        self.assertEqual(numbers.median([4, 1, 2, 3]), 2.5)
+        self.assertTrue(math.isnan(numbers.median([])))
+        self.assertEqual(numbers.ratio(3.0, 2.0), 1.5)
+        self.assertEqual(numbers.ratio(1.0, 0.0), math.inf)
+        self.assertTrue(math.isnan(numbers.ratio(0.0, 0.0)))
+        self.assertEqual(numbers.number("2.5"), 2.5)
+        self.assertTrue(math.isnan(numbers.number("")))
+        self.assertTrue(math.isnan(numbers.number(None)))
+
+
+class Tables(unittest.TestCase):
+    def test_table_and_its_reading(self):
+        text = tables.table(["a", "b"], [[1, "x"], ["–", 2.5]])
+        self.assertEqual(text, "| a | b |\n|---|---|\n| 1 | x |\n| – | 2.5 |")
+        self.assertEqual(tables.parse_table(["text before", ""] + text.splitlines() + ["", "| other |"]),
+                         [["a", "b"], ["1", "x"], ["–", "2.5"]])
+
+
+class Splice(unittest.TestCase):
+    def setUp(self):
+        self.directory = tempfile.mkdtemp(prefix="gdcreport_test_")
+        self.path = os.path.join(self.directory, "page.md")
+
+    def tearDown(self):
+        shutil.rmtree(self.directory, ignore_errors=True)
+
+    def test_appends_then_replaces_between_the_markers(self):
+        begin, end = "<!-- x: begin -->", "<!-- x: end -->"
+        with open(self.path, "w") as f:
+            f.write("# Page\n\nhand-kept text\n")
+        first = data.splice(self.path, begin, end, "## X\n\nold\n")
+        self.assertEqual(first, "# Page\n\nhand-kept text\n\n<!-- x: begin -->\n## X\n\nold\n<!-- x: end -->\n")
+        with open(self.path, "w") as f:
+            f.write(first + "\n## After\n")
+        second = data.splice(self.path, begin, end, "## X\n\nnew")
+        self.assertEqual(second, "# Page\n\nhand-kept text\n\n<!-- x: begin -->\n## X\n\nnew\n<!-- x: end -->\n"
+                                 "\n## After\n")
+        self.assertEqual(data.marked_block(second, begin, end), "<!-- x: begin -->\n## X\n\nnew\n<!-- x: end -->")
+        self.assertIsNone(data.marked_block("no markers", begin, end))
+
+    def test_key_values(self):
+        with open(self.path, "w") as f:
+            f.write("cpu=Some CPU = fast\nnot a pair\ncores=2\n")
+        self.assertEqual(data.read_key_values(self.path), {"cpu": "Some CPU = fast", "cores": "2"})
+        self.assertEqual(data.read_key_values(self.path + ".absent"), {})
+
+
+class Gifs(unittest.TestCase):
+    def test_side_by_side(self):
+        from PIL import Image
+        from gdcreport.gifs import LABEL_HEIGHT, side_by_side_gif
+        directory = tempfile.mkdtemp(prefix="gdcreport_gif_")
+        try:
+            panels = []
+            for panel, colour in enumerate(("red", "blue")):
+                paths = []
+                for frame in range(3):
+                    path = os.path.join(directory, f"p{panel}_{frame}.png")
+                    Image.new("RGB", (40, 30), colour).save(path)
+                    paths.append(path)
+                panels.append(paths)
+            out = os.path.join(directory, "out.gif")
+            side_by_side_gif(panels, [("a: PASS", (0, 110, 0)), ("b: FAIL", (190, 0, 0))], [0.5, 1.0, 1.5], out, 0.1)
+            with Image.open(out) as gif:
+                self.assertEqual(gif.size, (80, 30 + LABEL_HEIGHT))
+                self.assertEqual(gif.n_frames, 3)
+        finally:
+            shutil.rmtree(directory, ignore_errors=True)
+
+
+class Labels(unittest.TestCase):
+    def test_a_crowded_cluster_gets_every_label_clear(self):
+        generator = random.Random(7)
+        xs = [10 ** generator.uniform(2.0, 2.6) for _ in range(40)] + [300.0] * 3  # three on one spot
+        ys = [10 ** generator.uniform(1.9, 2.3) for _ in range(40)] + [150.0] * 3
+        texts = [f"setting{i}={generator.choice(['0.001', '16', 'true', '1e-08'])}" for i in range(len(xs))]
+        figure, ax = plt.subplots(figsize=(8, 6), dpi=plots.DPI)
+        ax.scatter(xs, ys, s=25)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_ylim(1, 1e3)
+        ax.plot([], [], label="a legend")
+        ax.legend(loc="lower right")
+        figure.tight_layout()
+        annotations, unplaced = plots.place_labels(ax, xs, ys, texts)
+        self.assertEqual(unplaced, [])
+        self.assertEqual(plots.label_overlaps(ax, annotations, (xs, ys)), [])
+        shown = "\n".join(a.get_text() for a in annotations)
+        for text in texts:
+            self.assertIn(text, shown)
+        self.assertEqual(len(annotations), 41)  # the three on one spot share a label
+        plt.close(figure)
+
+    def test_the_check_sees_overlapping_labels(self):
+        # What the Pareto plot did before: every label at the same small offset from its point.
+        figure, ax = plt.subplots(figsize=(4, 3), dpi=plots.DPI)
+        xs, ys = [1.0, 1.02, 3.0], [1.0, 1.0, 3.0]
+        ax.scatter(xs, ys)
+        annotations = [ax.annotate(f"a long label {i}", (x, y), xytext=(3, 2), textcoords="offset points", fontsize=6)
+                       for i, (x, y) in enumerate(zip(xs, ys))]
+        problems = plots.label_overlaps(ax, annotations, (xs, ys))
+        self.assertTrue(any("overlaps label" in p for p in problems), problems)
+        self.assertTrue(any("covers the marker" in p for p in problems), problems)
+        plt.close(figure)
+
+    def test_pareto_plot_labels_are_readable(self):
+        rows = data.read_csv(os.path.join(HERE, "data", "tradeoff_quick.csv"))
+        figure, labelled, unplaced = bench_report().pareto_figure(rows)
+        self.assertEqual(unplaced, [])
+        for ax, annotations, points in labelled:
+            self.assertGreater(len(annotations), 5)
+            self.assertEqual(plots.label_overlaps(ax, annotations, points), [], ax.get_title())
+        left = "\n".join(a.get_text() for a in labelled[0][1])
+        for row in rows:
+            if row["table"] == "manifold":  # every manifold row is labelled on the left
+                label = "defaults" if row["parameter"] == "defaults" else row["value"]
+                self.assertIn(label, left)
+        path = os.path.join(tempfile.mkdtemp(prefix="gdcreport_pareto_"), "pareto.png")
+        plots.save_figure(figure, path, tight=False)
+        self.assertGreater(os.path.getsize(path), 0)
+        shutil.rmtree(os.path.dirname(path), ignore_errors=True)
+
+
+if __name__ == "__main__":
+    unittest.main()
