@@ -741,6 +741,9 @@ error median / p95 / max:
 
 ![pareto](images/bench_pareto.png)
 
+Every point is labelled (points on one spot share a label); a label away from its point is joined to it by a thin
+grey line.
+
 The core offers `NormalMethod::GrowthDistance` (the paper, default) and `NormalMethod::SeparatingAxis` (the exact SAT
 normal, with the same features and intersection: its row in the table above); MPR and GJK+EPA normals appear here as
 stage-1 alternatives, and as the normal sources of ODE's libccd collider and Bullet's two clipping paths above.
@@ -771,7 +774,7 @@ how far anything still moved while measured.
   cases, their cycled poses and contenders, shared by `bench/pair_benchmarks.cpp`, `bench/instructions.cpp` and
   `bench/profile.cpp`), `bench/reference.*` (exact SAT normal, libccd MPR/EPA normals, 2-D polygon clipping),
   `bench/ode_shapes.*`, `bench/bullet_shapes.*`, `bench/callgrind_counts.py`, `bench/tradeoff.cpp`, `bench/scenes.cpp`,
-  `bench/report.py`.
+  `bench/report.py` (tables and plots through `scripts/gdcreport`, shared with the other report scripts).
 - Bullet runs with zero collision margins (the shapes are exactly the others'); its polyhedral clipping gets the
   separating normal as in `btConvexConvexAlgorithm`: from GJK+EPA by default, from `findSeparatingAxis` when SAT is enabled.
   Its clipping reports every clipped point (no reduction to 4 here).
