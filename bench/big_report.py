@@ -6,7 +6,6 @@ bench/report.py (the full scripts/bench) keeps it when it rewrites the rest of t
 Every number in the section comes from these files; nothing is typed in by hand. Numbers, tables,
 files and plots come from scripts/gdcreport, shared with the other report scripts.
 """
-import argparse
 import os
 import sys
 
@@ -309,10 +308,7 @@ def section(results, machine):
 
 
 def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--results", required=True)
-    parser.add_argument("--docs", required=True)
-    args = parser.parse_args()
+    args = data.results_and_docs_arguments(__doc__.strip().splitlines()[0])
     machine = data.read_key_values(os.path.join(args.results, "big_machine.txt"))
     os.makedirs(os.path.join(args.docs, "images"), exist_ok=True)
     rows = data.read_csv(os.path.join(args.results, "big_world.csv"))

@@ -7,7 +7,6 @@ available, profile-<case>.txt (perf report --children).
 Every number in the report comes from these files; nothing is typed in by hand. Numbers, tables,
 files and plots come from scripts/gdcreport, shared with the other report scripts.
 """
-import argparse
 import json
 import os
 import re
@@ -573,10 +572,7 @@ def plot_scenes(scenes, path):
 
 
 def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--results", required=True)
-    parser.add_argument("--docs", required=True)
-    args = parser.parse_args()
+    args = data.results_and_docs_arguments(__doc__.strip().splitlines()[0])
     machine = data.read_key_values(os.path.join(args.results, "machine.txt"))
     context, pairs, repetitions = load_pairs(os.path.join(args.results, "pairs.json"))
     instructions = load_instructions(os.path.join(args.results, "instructions.csv"))

@@ -1,8 +1,18 @@
 """Reading the result files the benchmark and scene programs write, and writing a generated
 section between two marker lines of a hand-kept page (docs/benchmarks.md)."""
+import argparse
 import csv
 import json
 import os
+
+
+def results_and_docs_arguments(description):
+    """The command line of the docs/benchmarks.md generators: --results DIR (the benchmark's
+    output) and --docs DIR (where benchmarks.md and images/ go)."""
+    parser = argparse.ArgumentParser(description=description)
+    parser.add_argument("--results", required=True)
+    parser.add_argument("--docs", required=True)
+    return parser.parse_args()
 
 
 def read_csv(path):

@@ -29,29 +29,27 @@ def fmt(value, digits=3, whole_from=None):
     return f"{value:.{digits}g}"
 
 
+def _by_magnitude(value, steps):
+    """value written by the first (from, divisor, format) of steps whose `from` it reaches."""
+    for start, divisor, form in steps:
+        if value >= start:
+            return form.format(value / divisor)
+    start, divisor, form = steps[-1]
+    return form.format(value / divisor)
+
+
+_NS_STEPS = [(1e6, 1e6, "{:.2f} ms"), (1e4, 1e3, "{:.0f} µs"), (1e3, 1e3, "{:.2f} µs"), (-math.inf, 1.0, "{:.0f} ns")]
+_MS_STEPS = [(100, 1.0, "{:.0f}"), (10, 1.0, "{:.1f}"), (1, 1.0, "{:.2f}"), (-math.inf, 1.0, "{:.3f}")]
+
+
 def fmt_ns(ns):
     """A duration given in ns, in ns, µs or ms: three significant digits or a whole number."""
-    if is_missing(ns):
-        return MISSING
-    if ns >= 1e6:
-        return f"{ns / 1e6:.2f} ms"
-    if ns >= 1e4:
-        return f"{ns / 1e3:.0f} µs"
-    if ns >= 1e3:
-        return f"{ns / 1e3:.2f} µs"
-    return f"{ns:.0f} ns"
+    return MISSING if is_missing(ns) else _by_magnitude(ns, _NS_STEPS)
 
 
 def fmt_ms(ms):
     """A duration given in ms (number or text), with decimals by magnitude: 123, 12.3, 1.23, 0.123."""
-    ms = float(ms)
-    if ms >= 100:
-        return f"{ms:.0f}"
-    if ms >= 10:
-        return f"{ms:.1f}"
-    if ms >= 1:
-        return f"{ms:.2f}"
-    return f"{ms:.3f}"
+    return _by_magnitude(float(ms), _MS_STEPS)
 
 
 def fmt_instructions(count):
