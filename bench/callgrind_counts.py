@@ -15,7 +15,6 @@ import argparse
 import csv
 import glob
 import os
-import re
 import shutil
 import subprocess
 import sys
