@@ -18,4 +18,5 @@ LIBRARY_PACKAGES=(build-essential cmake pkg-config libeigen3-dev libqhull-dev li
 # Packages needed to build the library, samples, viewer and tests, and to run the viewer's tests
 # headless (Xvfb with Mesa's software OpenGL).
 BUILD_PACKAGES=("${LIBRARY_PACKAGES[@]}" libccd-dev catch2
-                libglfw3-dev libimgui-dev libstb-dev libgl-dev libtinyobjloader-dev xvfb xauth libgl1-mesa-dri)
+                libglfw3-dev libimgui-dev libstb-dev libgl-dev libtinyobjloader-dev xvfb xauth libgl1-mesa-dri
+                python3-matplotlib python3-pil)
