@@ -287,25 +287,26 @@ struct Query {
     }
 };
 
-Manifold collideBox(const Polytope& a, const Pose& poseA, const PlaneInA& plane, const Settings& settings) {
-    Manifold manifold;
+// Both paths write into `manifold` (the caller's, reset to an empty answer by collideHalfSpaceInto):
+// a Manifold made here and copied out cost its 0.5 KB of zeroed points on every call.
+void collideBox(const Polytope& a, const Pose& poseA, const PlaneInA& plane, const Settings& settings,
+                Manifold& manifold) {
     const double tolerance = 1e-9 * a.radius();
     const Query query{a, plane, settings, tolerance, -settings.margin - tolerance};
     const Vec3 normal = -plane.m;
     const int deepest = boxSupport(normal);
     const Vec3* vertices = a.vertices().data();
-    if (plane.depthOf(vertices[deepest]) < query.keepDepth) return manifold;
+    if (plane.depthOf(vertices[deepest]) < query.keepDepth) return;
     ToleranceTest angularTolerance(settings.angularTolerance);
     manifold.featureA = boxFeature(normal, deepest, angularTolerance);
     manifold.featureB = {FeatureType::Face, 0};
     // A box's face is its whole cap (no other face lies within a tolerance below π/4).
     query.liftFeature(manifold.featureA, deepest, nullptr, [&](int v) { return plane.depthOf(vertices[v]); }, poseA,
                       manifold);
-    return manifold;
 }
 
-Manifold collideSmallHull(const Polytope& a, const Pose& poseA, const PlaneInA& plane, const Settings& settings) {
-    Manifold manifold;
+void collideSmallHull(const Polytope& a, const Pose& poseA, const PlaneInA& plane, const Settings& settings,
+                      Manifold& manifold) {
     const double tolerance = 1e-9 * a.radius();
     const Query query{a, plane, settings, tolerance, -settings.margin - tolerance};
     // One loop: every vertex's height m·x along the plane's normal, and the lowest one — the
@@ -320,7 +321,7 @@ Manifold collideSmallHull(const Polytope& a, const Pose& poseA, const PlaneInA& 
         const double height = heights[v] = plane.m.dot(vertices[v]);
         if (height < lowest) lowest = height, deepest = v;
     }
-    if (plane.offset - lowest < query.keepDepth) return manifold;
+    if (plane.offset - lowest < query.keepDepth) return;
 
     const Vec3 normal = -plane.m;
     const AngularTolerance angularTolerance(settings.angularTolerance);
@@ -332,15 +333,26 @@ Manifold collideSmallHull(const Polytope& a, const Pose& poseA, const PlaneInA& 
     const double* height = heights;
     query.liftFeature(manifold.featureA, deepest, hasCap ? &cap : nullptr,
                       [&](int v) { return plane.offset - height[v]; }, poseA, manifold);
-    return manifold;
 }
 
 }  // namespace
 
-Manifold collideHalfSpace(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings) {
+void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings,
+                          Manifold& out) {
     requireFinite(poseA);
     const PlaneInA plane = planeInA(b, poseA);
-    return a.isBox() ? collideBox(a, poseA, plane, settings) : collideSmallHull(a, poseA, plane, settings);
+    // The empty answer a new Manifold is (the points beyond pointCount are never read).
+    out.normal = Vec3::UnitZ();
+    out.pointCount = 0;
+    out.featureA = Feature{};
+    out.featureB = Feature{};
+    a.isBox() ? collideBox(a, poseA, plane, settings, out) : collideSmallHull(a, poseA, plane, settings, out);
+}
+
+Manifold collideHalfSpace(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings) {
+    Manifold manifold;
+    collideHalfSpaceInto(a, poseA, b, settings, manifold);
+    return manifold;
 }
 
 }  // namespace gdc::detail

@@ -40,4 +40,10 @@ inline bool halfSpaceFastPathApplies(const Polytope& polytope, const Settings& s
 /// collideGeneral(a, poseA, b, settings) for the inputs halfSpaceFastPathApplies accepts.
 Manifold collideHalfSpace(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings);
 
+/// collideHalfSpace written into `out` (every field a caller reads: normal, pointCount, points
+/// [0, pointCount), features), for a caller that keeps its answer in a Manifold of its own (the
+/// ODE adapter): no 0.5 KB Manifold made and copied per call. On a throw `out` is unspecified.
+void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings,
+                          Manifold& out);
+
 }  // namespace gdc::detail

@@ -3,6 +3,8 @@
 
 #include "pair_cache_table.hpp"
 #include "state.hpp"
+#include "../box_box.hpp"
+#include "../half_space.hpp"
 
 #include <algorithm>
 #include <array>
@@ -258,7 +260,7 @@ const Manifold& queryThrough(const CacheSource& source, dGeomID o1, dGeomID o2, 
                              CachedQuery cachedQuery) {
     PairCache* cache = source.find(o1, o2);
     if (!cache) {
-        storage.assignUsed(query());
+        query(storage);
         return storage;
     }
     const Manifold& manifold = cachedQuery(*cache, storage);
@@ -331,6 +333,22 @@ int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int ma
     return written;
 }
 
+// gdc::collide's answer written into `out`: its dispatch (collide.cpp) to the box–box and
+// half-space paths, whose answers are written in place — a Manifold returned by value is 0.5 KB
+// zeroed and then copied, a tenth of a box–plane call (tests/ode/adapter_overhead.sh). Every other
+// pair takes gdc::collide itself. tests/ode/adapter_equality_test.cpp checks the adapter against
+// gdc::collide on random poses of every pair type.
+void queryInto(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings, Manifold& out) {
+    if (gdc::detail::halfSpaceFastPathApplies(a, settings)) return gdc::detail::collideHalfSpaceInto(a, poseA, b, settings, out);
+    out.assignUsed(gdc::collide(a, poseA, b, settings));
+}
+
+void queryInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB, const Settings& settings,
+                 Manifold& out) {
+    if (gdc::detail::boxBoxApplies(a, b, settings)) return gdc::detail::collideBoxBoxInto(a, poseA, b, poseB, settings, out);
+    out.assignUsed(gdc::collide(a, poseA, b, poseB, settings));
+}
+
 // The settings for one core call: `settings`, or a copy with the caller's smaller limit.
 template <class Collide>
 decltype(auto) collideLimited(const Settings& settings, int maxContacts, Collide collideWith) {
@@ -354,7 +372,7 @@ int collidePolytopeWithPlane(dGeomID o1, int class1, dGeomID o2, int class2, int
     const HalfSpace halfSpace = halfSpaceOf(planeFirst ? o1 : o2, cache);
     const Manifold& manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) -> const Manifold& {
         return queryThrough(
-            pairCache, o1, o2, cache.scratch, [&] { return gdc::collide(polytope, pose, halfSpace, pairSettings); },
+            pairCache, o1, o2, cache.scratch, [&](Manifold& out) { queryInto(polytope, pose, halfSpace, pairSettings, out); },
             [&](PairCache& entry, Manifold& carried) -> const Manifold& {
                 return gdc::collideInto(polytope, pose, halfSpace, pairSettings, entry, carried);
             });
@@ -390,9 +408,9 @@ int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int
     const Manifold& manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) -> const Manifold& {
         return queryThrough(
             pairCache, o1, o2, cache.scratch,
-            [&] {
-                return swapped ? gdc::collide(polytope2, pose2, polytope1, pose1, pairSettings)
-                               : gdc::collide(polytope1, pose1, polytope2, pose2, pairSettings);
+            [&](Manifold& out) {
+                swapped ? queryInto(polytope2, pose2, polytope1, pose1, pairSettings, out)
+                        : queryInto(polytope1, pose1, polytope2, pose2, pairSettings, out);
             },
             [&](PairCache& entry, Manifold& carried) -> const Manifold& {
                 return swapped ? gdc::collideInto(polytope2, pose2, polytope1, pose1, pairSettings, entry, carried)
