@@ -188,7 +188,7 @@ bool matchesXExtent(const Polytope& hull, const Pose& pose, dGeomID geom, int br
 // The hull of a convex geom at `pose`, or nullptr when gdcontact does not know the geom's shape:
 // a plain dCreateConvex geom, or a createConvex geom given other data by dGeomSetConvex (its
 // AABB, which ODE computes from the points it holds, no longer matches the hull).
-const Polytope* knownHull(dGeomID geom, const Pose& pose, const Settings& settings, detail::ThreadCache& cache) {
+[[gnu::noinline]] const Polytope* knownHull(dGeomID geom, const Pose& pose, const Settings& settings, detail::ThreadCache& cache) {
     const Polytope* hull = detail::borrowedConvex(cache, geom);
     if (!hull) {
         reportPlainConvex();
@@ -205,8 +205,9 @@ const Polytope* knownHull(dGeomID geom, const Pose& pose, const Settings& settin
 
 // The polytope (geom frame) of a box or known convex geom; nullptr for an unknown convex; misuse
 // for any other class.
-const Polytope* polytopeFor(dGeomID geom, int geomClass, const Pose& pose, const Settings& settings,
-                            detail::ThreadCache& cache) {
+// Inline: the box case is a getter and the thread cache's compare, less than the call around it.
+[[gnu::always_inline]] inline const Polytope* polytopeFor(dGeomID geom, int geomClass, const Pose& pose,
+                                                          const Settings& settings, detail::ThreadCache& cache) {
     if (geomClass == dBoxClass) {
         dVector3 lengths;
         dGeomBoxGetLengths(geom, lengths);
@@ -275,12 +276,17 @@ int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int ma
                   dGeomID o1, dGeomID o2, dContactGeom* contact, int skip) {
     // The core's normal points from A towards B; ODE's from o2 into o1.
     Vec3 normal = flip ? manifold.normal : Vec3(-manifold.normal);
-    const double length = normal.norm();
-    if (!std::isfinite(length) || std::abs(length - 1.0) > 1e-6) {
-        dMessage(d_ERR_UNKNOWN, "gdcontact: the core returned an invalid normal; pair skipped");
-        return 0;
+    // norm() is the square root of squaredNorm(): where that is exactly 1 (the common case) the
+    // root is 1 and the division changes no bit, so both are skipped.
+    const double squaredLength = normal.squaredNorm();
+    if (squaredLength != 1.0) {
+        const double length = std::sqrt(squaredLength);
+        if (!std::isfinite(length) || std::abs(length - 1.0) > 1e-6) {
+            dMessage(d_ERR_UNKNOWN, "gdcontact: the core returned an invalid normal; pair skipped");
+            return 0;
+        }
+        normal /= length;
     }
-    normal /= length;
 
     // ODE treats every contact as active and clamps a negative depth to zero, so a speculative
     // point (depth < 0, only with Settings::margin > 0) would hold the bodies apart by its gap.
@@ -314,17 +320,26 @@ int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int ma
         *slot = Ranked{depth, i};
     }
     const int written = std::min(kept, maxContacts);
+    // Walk the ranked entries forwards (DeepestLast) or backwards (DeepestFirst): one step, no
+    // index arithmetic per contact.
     const bool reverse = order == ContactOrder::DeepestFirst;
-    const dReal odeNormal[4] = {normal.x(), normal.y(), normal.z(), 0};
+    const Ranked* entry = reverse ? &ranked[written] : &ranked[1];
+    const std::ptrdiff_t step = reverse ? -1 : 1;
+    const double nx = normal.x(), ny = normal.y(), nz = normal.z();
+    const ContactPoint* points = manifold.points.data();
     char* outBytes = reinterpret_cast<char*>(contact);
-    for (int k = 1; k <= written; ++k, outBytes += skip) {
-        const Ranked& entry = ranked[reverse ? written + 1 - k : k];
-        const Vec3& position = manifold.points[entry.index].position;
-        const dReal odePosition[4] = {position.x(), position.y(), position.z(), 0};
+    for (int k = 0; k < written; ++k, outBytes += skip, entry += step) {
+        const Vec3& position = points[entry->index].position;
         dContactGeom* out = reinterpret_cast<dContactGeom*>(outBytes);
-        std::memcpy(out->pos, odePosition, sizeof odePosition);
-        std::memcpy(out->normal, odeNormal, sizeof odeNormal);
-        out->depth = std::max(entry.depth, 0.0);
+        out->pos[0] = position.x();
+        out->pos[1] = position.y();
+        out->pos[2] = position.z();
+        out->pos[3] = 0;
+        out->normal[0] = nx;
+        out->normal[1] = ny;
+        out->normal[2] = nz;
+        out->normal[3] = 0;
+        out->depth = std::max(entry->depth, 0.0);
         out->g1 = o1;
         out->g2 = o2;
         out->side1 = -1;
