@@ -167,22 +167,34 @@ int collideWithOde(dGeomID o1, int class1, dGeomID o2, int class2, int maxContac
 // at the latest when the geom turns. (matchesAabb checks the whole box where trust is lost.)
 bool matchesXExtent(const Polytope& hull, const Pose& pose, dGeomID geom, int bruteForceLimit,
                     detail::ThreadCache& cache) {
-    // Fibonacci hashing of the address (allocators space geoms regularly): the top 6 bits.
-    static_assert(detail::ThreadCache::kAabbHints == 64, "the hash takes the top 6 bits");
+    // Fibonacci hashing of the address (allocators space geoms regularly): the top 8 bits.
+    static_assert(detail::ThreadCache::kAabbHints == 256, "the hash takes the top 8 bits");
     const auto address = static_cast<std::uint64_t>(reinterpret_cast<std::uintptr_t>(geom));
-    detail::ThreadCache::AabbHint& hint = cache.aabbHints[(address * 0x9E3779B97F4A7C15ull) >> 58];
-    if (hint.geom != geom) hint = detail::ThreadCache::AabbHint{geom, -1, -1};
+    detail::ThreadCache::AabbHint& hint = cache.aabbHints[(address * 0x9E3779B97F4A7C15ull) >> 56];
+    if (hint.geom != geom) hint.geom = geom, hint.lower = -1, hint.upper = -1, hint.verifiedHull = nullptr;
+    dReal box[6];
+    dGeomGetAABB(geom, box);
+    // Everything the check below reads besides the hull: compared by their bytes with the inputs of
+    // this geom's last check that passed (a geom in several pairs of one step: checked once).
+    const double inputs[8] = {pose.rotation(0, 0), pose.rotation(0, 1), pose.rotation(0, 2), pose.position.x(),
+                              pose.position.y(),   pose.position.z(),   box[0],              box[1]};
+    static_assert(sizeof(inputs) == sizeof(hint.verifiedInputs), "the memo holds every input");
+    if (hint.verifiedHull == &hull && std::memcmp(inputs, hint.verifiedInputs, sizeof inputs) == 0) return true;
+    hint.verifiedHull = nullptr;
     const Vec3 direction = pose.rotation.row(0).transpose();
     // With a hint, climb from it (a few neighbours) even where a cold query would scan every vertex.
     hint.upper = hull.supportVertex(direction, hint.upper >= 0 ? 0 : bruteForceLimit, hint.upper);
     hint.lower = hull.supportVertex(-direction, hint.lower >= 0 ? 0 : bruteForceLimit, hint.lower);
     const double upper = direction.dot(hull.vertices()[hint.upper]) + pose.position.x();
     const double lower = direction.dot(hull.vertices()[hint.lower]) + pose.position.x();
-    dReal box[6];
-    dGeomGetAABB(geom, box);
     const double tolerance = 1e-9 * (hull.radius() + pose.position.norm()) + 1e-300;
-    return std::abs(static_cast<double>(box[0]) - lower) <= tolerance &&
-           std::abs(static_cast<double>(box[1]) - upper) <= tolerance;
+    const bool matches = std::abs(static_cast<double>(box[0]) - lower) <= tolerance &&
+                         std::abs(static_cast<double>(box[1]) - upper) <= tolerance;
+    if (matches) {
+        hint.verifiedHull = &hull;
+        std::memcpy(hint.verifiedInputs, inputs, sizeof inputs);
+    }
+    return matches;
 }
 
 // The hull of a convex geom at `pose`, or nullptr when gdcontact does not know the geom's shape:

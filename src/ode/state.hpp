@@ -116,12 +116,18 @@ struct ThreadCache {
     // Where the x-extent check of a convex's AABB (collide.cpp) found the hull's extreme vertices
     // last time, per geom (direct-mapped by address): the next check climbs from there, a few
     // steps for a body that moved a little. Only a hint: a stale entry costs a longer climb.
+    // With it, the inputs of the last check that passed (the hull, the bytes of the pose's first
+    // rotation row and position, and of the AABB's x extent): the check is a function of exactly
+    // these, so the same inputs pass again without the support queries — a geom in several pairs
+    // of a step is checked once (verifiedHull null: nothing verified).
     struct AabbHint {
         const void* geom = nullptr;
         int lower = -1;
         int upper = -1;
+        const Polytope* verifiedHull = nullptr;
+        double verifiedInputs[8] = {};
     };
-    static constexpr int kAabbHints = 64;
+    static constexpr int kAabbHints = 256;  // 22 KB a thread; at 64, 16 geoms already evicted each other
     AabbHint aabbHints[kAabbHints];
 
     std::uint64_t settingsGeneration = 0;  // 0: never copied
