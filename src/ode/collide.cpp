@@ -229,11 +229,10 @@ bool matchesXExtent(const Polytope& hull, const Pose& pose, dGeomID geom, int br
     return knownHull(geom, pose, settings, cache);
 }
 
-HalfSpace halfSpaceOf(dGeomID plane, detail::ThreadCache& cache) {
+const detail::ThreadCache::PlaneSlot& planeOf(dGeomID plane, detail::ThreadCache& cache) {
     dVector4 parameters;  // a·x + b·y + c·z ≤ d is the solid; (a,b,c) points out of it
     dGeomPlaneGetParams(plane, parameters);
-    return HalfSpace{detail::unitPlaneNormal(cache, parameters[0], parameters[1], parameters[2]),
-                     static_cast<double>(parameters[3])};
+    return detail::planeSlot(cache, parameters[0], parameters[1], parameters[2], parameters[3]);
 }
 
 // One fixed order per pair, so collide(a,b) and collide(b,a) make the same core call and their
@@ -365,8 +364,15 @@ int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int ma
 // zeroed and then copied, a tenth of a box–plane call (tests/ode/adapter_overhead.sh). Every other
 // pair takes gdc::collide itself. tests/ode/adapter_equality_test.cpp checks the adapter against
 // gdc::collide on random poses of every pair type.
-void queryInto(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings, Manifold& out) {
-    if (gdc::detail::halfSpaceFastPathApplies(a, settings)) return gdc::detail::collideHalfSpaceInto(a, poseA, b, settings, out);
+// A plane's normalisation, made once per plane (planeSlot), where the core accepted it.
+void queryInto(const Polytope& a, const Pose& poseA, const detail::ThreadCache::PlaneSlot& plane, const HalfSpace& b,
+               const Settings& settings, Manifold& out) {
+    if (gdc::detail::halfSpaceFastPathApplies(a, settings)) {
+        if (plane.normalised)
+            return gdc::detail::collideHalfSpaceInto(
+                a, poseA, gdc::detail::UnitHalfSpace{plane.normalisedNormal, plane.normalisedOffset}, settings, out);
+        return gdc::detail::collideHalfSpaceInto(a, poseA, b, settings, out);
+    }
     out.assignUsed(gdc::collide(a, poseA, b, settings));
 }
 
@@ -396,10 +402,11 @@ int collidePolytopeWithPlane(dGeomID o1, int class1, dGeomID o2, int class2, int
     const Polytope* known = polytopeFor(body, planeFirst ? class2 : class1, pose, settings, cache);
     if (!known) return collideWithOde(o1, class1, o2, class2, maxContacts, contact, skip);
     const Polytope& polytope = *known;
-    const HalfSpace halfSpace = halfSpaceOf(planeFirst ? o1 : o2, cache);
+    const detail::ThreadCache::PlaneSlot& plane = planeOf(planeFirst ? o1 : o2, cache);
+    const HalfSpace halfSpace{plane.unit, plane.raw[3]};
     const Manifold& manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) -> const Manifold& {
         return queryThrough(
-            pairCache, o1, o2, cache.scratch, [&](Manifold& out) { queryInto(polytope, pose, halfSpace, pairSettings, out); },
+            pairCache, o1, o2, cache.scratch, [&](Manifold& out) { queryInto(polytope, pose, plane, halfSpace, pairSettings, out); },
             [&](PairCache& entry, Manifold& carried) -> const Manifold& {
                 return gdc::collideInto(polytope, pose, halfSpace, pairSettings, entry, carried);
             });
