@@ -179,7 +179,10 @@ bool matchesXExtent(const Polytope& hull, const Pose& pose, dGeomID geom, int br
     const double inputs[8] = {pose.rotation(0, 0), pose.rotation(0, 1), pose.rotation(0, 2), pose.position.x(),
                               pose.position.y(),   pose.position.z(),   box[0],              box[1]};
     static_assert(sizeof(inputs) == sizeof(hint.verifiedInputs), "the memo holds every input");
-    if (hint.verifiedHull == &hull && std::memcmp(inputs, hint.verifiedInputs, sizeof inputs) == 0) return true;
+    const std::uint64_t generation = detail::convexesForgotten.load(std::memory_order_acquire);
+    if (hint.verifiedHull == &hull && hint.verifiedGeneration == generation &&
+        std::memcmp(inputs, hint.verifiedInputs, sizeof inputs) == 0)
+        return true;
     hint.verifiedHull = nullptr;
     const Vec3 direction = pose.rotation.row(0).transpose();
     // With a hint, climb from it (a few neighbours) even where a cold query would scan every vertex.
@@ -192,6 +195,7 @@ bool matchesXExtent(const Polytope& hull, const Pose& pose, dGeomID geom, int br
                          std::abs(static_cast<double>(box[1]) - upper) <= tolerance;
     if (matches) {
         hint.verifiedHull = &hull;
+        hint.verifiedGeneration = generation;
         std::memcpy(hint.verifiedInputs, inputs, sizeof inputs);
     }
     return matches;

@@ -259,6 +259,7 @@ void forgetConvex(const void* address) noexcept {
             freeUnreadIndexes(s);
         }
         s.convexCount.fetch_sub(1, std::memory_order_relaxed);
+        convexesForgotten.fetch_add(1, std::memory_order_release);  // every thread's AABB memo is void
     }
 }
 
@@ -539,6 +540,8 @@ bool odeIsInitialized() {
 }
 
 std::atomic<std::uint64_t> installedSettingsGeneration{1};
+
+std::atomic<std::uint64_t> convexesForgotten{0};
 
 const Settings& refreshInstalledSettings(ThreadCache& cache) {
     State& s = state();

@@ -125,12 +125,15 @@ struct ThreadCache {
     // With it, the inputs of the last check that passed (the hull, the bytes of the pose's first
     // rotation row and position, and of the AABB's x extent): the check is a function of exactly
     // these, so the same inputs pass again without the support queries — a geom in several pairs
-    // of a step is checked once (verifiedHull null: nothing verified).
+    // of a step is checked once (verifiedHull null: nothing verified). Valid only while no
+    // registered convex has been forgotten since (convexesForgotten): a new geom and hull may take
+    // a freed one's addresses.
     struct AabbHint {
         const void* geom = nullptr;
         int lower = -1;
         int upper = -1;
         const Polytope* verifiedHull = nullptr;
+        std::uint64_t verifiedGeneration = 0;
         double verifiedInputs[8] = {};
     };
     static constexpr int kAabbHints = 256;  // 22 KB a thread; at 64, 16 geoms already evicted each other
@@ -179,6 +182,10 @@ inline const ThreadCache::PlaneSlot& planeSlot(ThreadCache& cache, double a, dou
     if (last.raw[0] == a && last.raw[1] == b && last.raw[2] == c && last.raw[3] == d) return last;
     return planeSlotSlow(cache, a, b, c, d);
 }
+
+/// Advanced whenever the free hook forgets a registered convex (its geom was freed): the
+/// per-thread AABB memos (ThreadCache::AabbHint) taken before are void.
+extern std::atomic<std::uint64_t> convexesForgotten;
 
 /// Advanced by every install() (under the settings lock); starts at 1, so that a thread's
 /// never-filled copy (generation 0) is stale.
