@@ -416,18 +416,22 @@ bool boxBoxApplies(const Polytope& a, const Polytope& b, const Settings& setting
            settings.angularTolerance >= 0 && settings.angularTolerance <= kMaxAngularTolerance;
 }
 
-Manifold collideBoxBox(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
-                       const Settings& settings) {
-    auto general = [&] { return collideGeneral(a, poseA, b, poseB, settings); };
+void collideBoxBoxInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
+                       const Settings& settings, Manifold& manifold) {
+    auto general = [&] { manifold.assignUsed(collideGeneral(a, poseA, b, poseB, settings)); };
     if (!poseA.isFinite() || !poseB.isFinite()) return general();  // it says what is wrong
-    Manifold manifold;
+    // The empty answer a new Manifold is (the points beyond pointCount are never read).
+    manifold.normal = Vec3::UnitZ();
+    manifold.pointCount = 0;
+    manifold.featureA = Feature{};
+    manifold.featureB = Feature{};
     const Pose bInA = poseA.relative(poseB);
     const MinkowskiDifference pair(a, b, bInA, settings.bruteForceSupportLimit);
     const double size = a.radius() + b.radius();
     const double tolerance = 1e-9 * size;
     const Vec3 centreOffset = pair.centreB - pair.centreA;
     const double centreDistance = centreOffset.norm();
-    if (separatedByEarlyOut(pair, centreOffset, centreDistance, size, settings.margin, tolerance)) return manifold;
+    if (separatedByEarlyOut(pair, centreOffset, centreDistance, size, settings.margin, tolerance)) return;
 
     // Stage 1: the closed-form growth distance of two boxes.
     const BoxGrowth growth =
@@ -435,7 +439,7 @@ Manifold collideBoxBox(const Polytope& a, const Pose& poseA, const Polytope& b, 
     if (!growth.valid) return general();  // coincident centres: the general fallback normal
     Vec3 normal = growth.normal;
     double normalOverlap = pair.overlapAlong(normal);
-    if (normalOverlap < -settings.margin - tolerance) return manifold;
+    if (normalOverlap < -settings.margin - tolerance) return;
     // The overhang check can only act where the box pair's bound leaves room for a face of less
     // than half the normal's overlap (deep overlap): then the general pipeline runs it.
     if (!(growth.faceOverlapLowerBound >= kClearlySmallerOverlap * normalOverlap + tolerance)) return general();
@@ -475,6 +479,12 @@ Manifold collideBoxBox(const Polytope& a, const Pose& poseA, const Polytope& b, 
         return general();
     const Vec3 centroids[2] = {pair.centreA, pair.centreB};
     emitManifold(kept, normal, poseA, settings, tolerance, centroids, 2, manifold);
+}
+
+Manifold collideBoxBox(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
+                       const Settings& settings) {
+    Manifold manifold;
+    collideBoxBoxInto(a, poseA, b, poseB, settings, manifold);
     return manifold;
 }
 

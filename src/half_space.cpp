@@ -38,23 +38,10 @@ struct PlaneInA {
     double depthOf(const Vec3& x) const { return offset - m.dot(x); }
 };
 
-// collideGeneral's normalisation and change of frame, expression for expression (so to the bit):
-// through the largest component first, so that a finite normal of huge or tiny components
-// neither overflows nor underflows.
-PlaneInA planeInA(const HalfSpace& b, const Pose& poseA) {
-    const Vec3 magnitude = b.normal.cwiseAbs();
-    const double largest = std::max(std::max(magnitude.x(), magnitude.y()), magnitude.z());
-    if (!((b.normal * 0.0).sum() + b.offset * 0.0 == 0) || !(largest > 0))
-        throw InvalidInput("the half-space normal must be finite and non-zero");
-    // An axis-aligned unit normal (a ground plane) is its own normalisation: divided by 1 twice.
-    if (largest == 1 && b.normal.squaredNorm() == 1)
-        return {poseA.rotation.transpose() * b.normal, b.offset - b.normal.dot(poseA.position)};
-    const double normalLength = (b.normal / largest).norm();
-    const Vec3 unitNormal = b.normal / largest / normalLength;
-    const double scaledOffset = b.offset / largest / normalLength;
-    if (!std::isfinite(scaledOffset))
-        throw InvalidInput("the half-space offset overflows double precision once its normal is normalised");
-    return {poseA.rotation.transpose() * unitNormal, scaledOffset - unitNormal.dot(poseA.position)};
+// collideGeneral's change of frame, expression for expression (so to the bit), of the plane
+// normaliseHalfSpace made.
+PlaneInA planeInA(const UnitHalfSpace& b, const Pose& poseA) {
+    return {poseA.rotation.transpose() * b.normal, b.offset - b.normal.dot(poseA.position)};
 }
 
 // The comparisons of selectFeature with the Gauss-map tolerance's cosine and sine, settled by
@@ -287,25 +274,26 @@ struct Query {
     }
 };
 
-Manifold collideBox(const Polytope& a, const Pose& poseA, const PlaneInA& plane, const Settings& settings) {
-    Manifold manifold;
+// Both paths write into `manifold` (the caller's, reset to an empty answer by collideHalfSpaceInto):
+// a Manifold made here and copied out cost its 0.5 KB of zeroed points on every call.
+void collideBox(const Polytope& a, const Pose& poseA, const PlaneInA& plane, const Settings& settings,
+                Manifold& manifold) {
     const double tolerance = 1e-9 * a.radius();
     const Query query{a, plane, settings, tolerance, -settings.margin - tolerance};
     const Vec3 normal = -plane.m;
     const int deepest = boxSupport(normal);
     const Vec3* vertices = a.vertices().data();
-    if (plane.depthOf(vertices[deepest]) < query.keepDepth) return manifold;
+    if (plane.depthOf(vertices[deepest]) < query.keepDepth) return;
     ToleranceTest angularTolerance(settings.angularTolerance);
     manifold.featureA = boxFeature(normal, deepest, angularTolerance);
     manifold.featureB = {FeatureType::Face, 0};
     // A box's face is its whole cap (no other face lies within a tolerance below π/4).
     query.liftFeature(manifold.featureA, deepest, nullptr, [&](int v) { return plane.depthOf(vertices[v]); }, poseA,
                       manifold);
-    return manifold;
 }
 
-Manifold collideSmallHull(const Polytope& a, const Pose& poseA, const PlaneInA& plane, const Settings& settings) {
-    Manifold manifold;
+void collideSmallHull(const Polytope& a, const Pose& poseA, const PlaneInA& plane, const Settings& settings,
+                      Manifold& manifold) {
     const double tolerance = 1e-9 * a.radius();
     const Query query{a, plane, settings, tolerance, -settings.margin - tolerance};
     // One loop: every vertex's height m·x along the plane's normal, and the lowest one — the
@@ -320,7 +308,7 @@ Manifold collideSmallHull(const Polytope& a, const Pose& poseA, const PlaneInA& 
         const double height = heights[v] = plane.m.dot(vertices[v]);
         if (height < lowest) lowest = height, deepest = v;
     }
-    if (plane.offset - lowest < query.keepDepth) return manifold;
+    if (plane.offset - lowest < query.keepDepth) return;
 
     const Vec3 normal = -plane.m;
     const AngularTolerance angularTolerance(settings.angularTolerance);
@@ -332,15 +320,69 @@ Manifold collideSmallHull(const Polytope& a, const Pose& poseA, const PlaneInA& 
     const double* height = heights;
     query.liftFeature(manifold.featureA, deepest, hasCap ? &cap : nullptr,
                       [&](int v) { return plane.offset - height[v]; }, poseA, manifold);
-    return manifold;
 }
 
 }  // namespace
 
-Manifold collideHalfSpace(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings) {
-    requireFinite(poseA);
+namespace {
+
+// collideGeneral's normalisation, expression for expression (so to the bit): through the largest
+// component first, so that a finite normal of huge or tiny components neither overflows nor
+// underflows. A function of the half-space alone: its square root and six divisions in a chain were
+// a fifth of a box–plane call's time, which a caller with a fixed plane pays once
+// (normaliseHalfSpace). Inlined where the core's own query normalises on every call (called, it
+// cost that query 3 %, tests/ode/adapter_overhead.sh's core column).
+[[gnu::always_inline]] inline UnitHalfSpace normalised(const HalfSpace& b) {
+    const Vec3 magnitude = b.normal.cwiseAbs();
+    const double largest = std::max(std::max(magnitude.x(), magnitude.y()), magnitude.z());
+    if (!((b.normal * 0.0).sum() + b.offset * 0.0 == 0) || !(largest > 0))
+        throw InvalidInput("the half-space normal must be finite and non-zero");
+    // An axis-aligned unit normal (a ground plane) is its own normalisation: divided by 1 twice.
+    if (largest == 1 && b.normal.squaredNorm() == 1) return {b.normal, b.offset};
+    const double normalLength = (b.normal / largest).norm();
+    const Vec3 unitNormal = b.normal / largest / normalLength;
+    const double scaledOffset = b.offset / largest / normalLength;
+    if (!std::isfinite(scaledOffset))
+        throw InvalidInput("the half-space offset overflows double precision once its normal is normalised");
+    return {unitNormal, scaledOffset};
+}
+
+}  // namespace
+
+UnitHalfSpace normaliseHalfSpace(const HalfSpace& b) { return normalised(b); }
+
+namespace {
+
+// Both entry points below, once A's pose is known finite.
+void collideNormalised(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b, const Settings& settings,
+                       Manifold& out) {
     const PlaneInA plane = planeInA(b, poseA);
-    return a.isBox() ? collideBox(a, poseA, plane, settings) : collideSmallHull(a, poseA, plane, settings);
+    // The empty answer a new Manifold is (the points beyond pointCount are never read).
+    out.normal = Vec3::UnitZ();
+    out.pointCount = 0;
+    out.featureA = Feature{};
+    out.featureB = Feature{};
+    a.isBox() ? collideBox(a, poseA, plane, settings, out) : collideSmallHull(a, poseA, plane, settings, out);
+}
+
+}  // namespace
+
+void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings,
+                          Manifold& out) {
+    requireFinite(poseA);  // first: a bad pose is reported before a bad plane, as collideGeneral does
+    collideNormalised(a, poseA, normalised(b), settings, out);
+}
+
+void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b, const Settings& settings,
+                          Manifold& out) {
+    requireFinite(poseA);
+    collideNormalised(a, poseA, b, settings, out);
+}
+
+Manifold collideHalfSpace(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings) {
+    Manifold manifold;
+    collideHalfSpaceInto(a, poseA, b, settings, manifold);
+    return manifold;
 }
 
 }  // namespace gdc::detail

@@ -40,4 +40,24 @@ inline bool halfSpaceFastPathApplies(const Polytope& polytope, const Settings& s
 /// collideGeneral(a, poseA, b, settings) for the inputs halfSpaceFastPathApplies accepts.
 Manifold collideHalfSpace(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings);
 
+/// A half-space as collideHalfSpace (and collideGeneral) normalise it: the unit normal and the
+/// offset scaled with it (an axis-aligned unit normal kept as it is). Throws the InvalidInput they
+/// throw for a non-finite or zero normal, or an offset that overflows once scaled.
+struct UnitHalfSpace {
+    Vec3 normal;
+    double offset;
+};
+UnitHalfSpace normaliseHalfSpace(const HalfSpace& b);
+
+/// collideHalfSpace written into `out` (every field a caller reads: normal, pointCount, points
+/// [0, pointCount), features), for a caller that keeps its answer in a Manifold of its own (the
+/// ODE adapter): no 0.5 KB Manifold made and copied per call. On a throw `out` is unspecified.
+void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings,
+                          Manifold& out);
+
+/// The same, for the half-space normaliseHalfSpace(b) made (a caller with a fixed plane normalises
+/// it once): the same answer, to the bit, as collideHalfSpaceInto(a, poseA, b, settings, out).
+void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b, const Settings& settings,
+                          Manifold& out);
+
 }  // namespace gdc::detail

@@ -3,6 +3,8 @@
 
 #include "pair_cache_table.hpp"
 #include "state.hpp"
+#include "../box_box.hpp"
+#include "../half_space.hpp"
 
 #include <algorithm>
 #include <array>
@@ -165,28 +167,44 @@ int collideWithOde(dGeomID o1, int class1, dGeomID o2, int class2, int maxContac
 // at the latest when the geom turns. (matchesAabb checks the whole box where trust is lost.)
 bool matchesXExtent(const Polytope& hull, const Pose& pose, dGeomID geom, int bruteForceLimit,
                     detail::ThreadCache& cache) {
-    // Fibonacci hashing of the address (allocators space geoms regularly): the top 6 bits.
-    static_assert(detail::ThreadCache::kAabbHints == 64, "the hash takes the top 6 bits");
+    // Fibonacci hashing of the address (allocators space geoms regularly): the top 8 bits.
+    static_assert(detail::ThreadCache::kAabbHints == 256, "the hash takes the top 8 bits");
     const auto address = static_cast<std::uint64_t>(reinterpret_cast<std::uintptr_t>(geom));
-    detail::ThreadCache::AabbHint& hint = cache.aabbHints[(address * 0x9E3779B97F4A7C15ull) >> 58];
-    if (hint.geom != geom) hint = detail::ThreadCache::AabbHint{geom, -1, -1};
+    detail::ThreadCache::AabbHint& hint = cache.aabbHints[(address * 0x9E3779B97F4A7C15ull) >> 56];
+    if (hint.geom != geom) hint.geom = geom, hint.lower = -1, hint.upper = -1, hint.verifiedHull = nullptr;
+    dReal box[6];
+    dGeomGetAABB(geom, box);
+    // Everything the check below reads besides the hull: compared by their bytes with the inputs of
+    // this geom's last check that passed (a geom in several pairs of one step: checked once).
+    const double inputs[8] = {pose.rotation(0, 0), pose.rotation(0, 1), pose.rotation(0, 2), pose.position.x(),
+                              pose.position.y(),   pose.position.z(),   box[0],              box[1]};
+    static_assert(sizeof(inputs) == sizeof(hint.verifiedInputs), "the memo holds every input");
+    const std::uint64_t generation = detail::convexesForgotten.load(std::memory_order_acquire);
+    if (hint.verifiedHull == &hull && hint.verifiedGeneration == generation &&
+        std::memcmp(inputs, hint.verifiedInputs, sizeof inputs) == 0)
+        return true;
+    hint.verifiedHull = nullptr;
     const Vec3 direction = pose.rotation.row(0).transpose();
     // With a hint, climb from it (a few neighbours) even where a cold query would scan every vertex.
     hint.upper = hull.supportVertex(direction, hint.upper >= 0 ? 0 : bruteForceLimit, hint.upper);
     hint.lower = hull.supportVertex(-direction, hint.lower >= 0 ? 0 : bruteForceLimit, hint.lower);
     const double upper = direction.dot(hull.vertices()[hint.upper]) + pose.position.x();
     const double lower = direction.dot(hull.vertices()[hint.lower]) + pose.position.x();
-    dReal box[6];
-    dGeomGetAABB(geom, box);
     const double tolerance = 1e-9 * (hull.radius() + pose.position.norm()) + 1e-300;
-    return std::abs(static_cast<double>(box[0]) - lower) <= tolerance &&
-           std::abs(static_cast<double>(box[1]) - upper) <= tolerance;
+    const bool matches = std::abs(static_cast<double>(box[0]) - lower) <= tolerance &&
+                         std::abs(static_cast<double>(box[1]) - upper) <= tolerance;
+    if (matches) {
+        hint.verifiedHull = &hull;
+        hint.verifiedGeneration = generation;
+        std::memcpy(hint.verifiedInputs, inputs, sizeof inputs);
+    }
+    return matches;
 }
 
 // The hull of a convex geom at `pose`, or nullptr when gdcontact does not know the geom's shape:
 // a plain dCreateConvex geom, or a createConvex geom given other data by dGeomSetConvex (its
 // AABB, which ODE computes from the points it holds, no longer matches the hull).
-const Polytope* knownHull(dGeomID geom, const Pose& pose, const Settings& settings, detail::ThreadCache& cache) {
+[[gnu::noinline]] const Polytope* knownHull(dGeomID geom, const Pose& pose, const Settings& settings, detail::ThreadCache& cache) {
     const Polytope* hull = detail::borrowedConvex(cache, geom);
     if (!hull) {
         reportPlainConvex();
@@ -203,8 +221,9 @@ const Polytope* knownHull(dGeomID geom, const Pose& pose, const Settings& settin
 
 // The polytope (geom frame) of a box or known convex geom; nullptr for an unknown convex; misuse
 // for any other class.
-const Polytope* polytopeFor(dGeomID geom, int geomClass, const Pose& pose, const Settings& settings,
-                            detail::ThreadCache& cache) {
+// Inline: the box case is a getter and the thread cache's compare, less than the call around it.
+[[gnu::always_inline]] inline const Polytope* polytopeFor(dGeomID geom, int geomClass, const Pose& pose,
+                                                          const Settings& settings, detail::ThreadCache& cache) {
     if (geomClass == dBoxClass) {
         dVector3 lengths;
         dGeomBoxGetLengths(geom, lengths);
@@ -214,11 +233,10 @@ const Polytope* polytopeFor(dGeomID geom, int geomClass, const Pose& pose, const
     return knownHull(geom, pose, settings, cache);
 }
 
-HalfSpace halfSpaceOf(dGeomID plane, detail::ThreadCache& cache) {
+const detail::ThreadCache::PlaneSlot& planeOf(dGeomID plane, detail::ThreadCache& cache) {
     dVector4 parameters;  // a·x + b·y + c·z ≤ d is the solid; (a,b,c) points out of it
     dGeomPlaneGetParams(plane, parameters);
-    return HalfSpace{detail::unitPlaneNormal(cache, parameters[0], parameters[1], parameters[2]),
-                     static_cast<double>(parameters[3])};
+    return detail::planeSlot(cache, parameters[0], parameters[1], parameters[2], parameters[3]);
 }
 
 // One fixed order per pair, so collide(a,b) and collide(b,a) make the same core call and their
@@ -258,7 +276,7 @@ const Manifold& queryThrough(const CacheSource& source, dGeomID o1, dGeomID o2, 
                              CachedQuery cachedQuery) {
     PairCache* cache = source.find(o1, o2);
     if (!cache) {
-        storage.assignUsed(query());
+        query(storage);
         return storage;
     }
     const Manifold& manifold = cachedQuery(*cache, storage);
@@ -273,12 +291,17 @@ int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int ma
                   dGeomID o1, dGeomID o2, dContactGeom* contact, int skip) {
     // The core's normal points from A towards B; ODE's from o2 into o1.
     Vec3 normal = flip ? manifold.normal : Vec3(-manifold.normal);
-    const double length = normal.norm();
-    if (!std::isfinite(length) || std::abs(length - 1.0) > 1e-6) {
-        dMessage(d_ERR_UNKNOWN, "gdcontact: the core returned an invalid normal; pair skipped");
-        return 0;
+    // norm() is the square root of squaredNorm(): where that is exactly 1 (the common case) the
+    // root is 1 and the division changes no bit, so both are skipped.
+    const double squaredLength = normal.squaredNorm();
+    if (squaredLength != 1.0) {
+        const double length = std::sqrt(squaredLength);
+        if (!std::isfinite(length) || std::abs(length - 1.0) > 1e-6) {
+            dMessage(d_ERR_UNKNOWN, "gdcontact: the core returned an invalid normal; pair skipped");
+            return 0;
+        }
+        normal /= length;
     }
-    normal /= length;
 
     // ODE treats every contact as active and clamps a negative depth to zero, so a speculative
     // point (depth < 0, only with Settings::margin > 0) would hold the bodies apart by its gap.
@@ -312,23 +335,55 @@ int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int ma
         *slot = Ranked{depth, i};
     }
     const int written = std::min(kept, maxContacts);
+    // Walk the ranked entries forwards (DeepestLast) or backwards (DeepestFirst): one step, no
+    // index arithmetic per contact.
     const bool reverse = order == ContactOrder::DeepestFirst;
-    const dReal odeNormal[4] = {normal.x(), normal.y(), normal.z(), 0};
+    const Ranked* entry = reverse ? &ranked[written] : &ranked[1];
+    const std::ptrdiff_t step = reverse ? -1 : 1;
+    const double nx = normal.x(), ny = normal.y(), nz = normal.z();
+    const ContactPoint* points = manifold.points.data();
     char* outBytes = reinterpret_cast<char*>(contact);
-    for (int k = 1; k <= written; ++k, outBytes += skip) {
-        const Ranked& entry = ranked[reverse ? written + 1 - k : k];
-        const Vec3& position = manifold.points[entry.index].position;
-        const dReal odePosition[4] = {position.x(), position.y(), position.z(), 0};
+    for (int k = 0; k < written; ++k, outBytes += skip, entry += step) {
+        const Vec3& position = points[entry->index].position;
         dContactGeom* out = reinterpret_cast<dContactGeom*>(outBytes);
-        std::memcpy(out->pos, odePosition, sizeof odePosition);
-        std::memcpy(out->normal, odeNormal, sizeof odeNormal);
-        out->depth = std::max(entry.depth, 0.0);
+        out->pos[0] = position.x();
+        out->pos[1] = position.y();
+        out->pos[2] = position.z();
+        out->pos[3] = 0;
+        out->normal[0] = nx;
+        out->normal[1] = ny;
+        out->normal[2] = nz;
+        out->normal[3] = 0;
+        out->depth = std::max(entry->depth, 0.0);
         out->g1 = o1;
         out->g2 = o2;
         out->side1 = -1;
         out->side2 = -1;
     }
     return written;
+}
+
+// gdc::collide's answer written into `out`: its dispatch (collide.cpp) to the box–box and
+// half-space paths, whose answers are written in place — a Manifold returned by value is 0.5 KB
+// zeroed and then copied, a tenth of a box–plane call (tests/ode/adapter_overhead.sh). Every other
+// pair takes gdc::collide itself. tests/ode/adapter_equality_test.cpp checks the adapter against
+// gdc::collide on random poses of every pair type.
+// A plane's normalisation, made once per plane (planeSlot), where the core accepted it.
+void queryInto(const Polytope& a, const Pose& poseA, const detail::ThreadCache::PlaneSlot& plane, const HalfSpace& b,
+               const Settings& settings, Manifold& out) {
+    if (gdc::detail::halfSpaceFastPathApplies(a, settings)) {
+        if (plane.normalised)
+            return gdc::detail::collideHalfSpaceInto(
+                a, poseA, gdc::detail::UnitHalfSpace{plane.normalisedNormal, plane.normalisedOffset}, settings, out);
+        return gdc::detail::collideHalfSpaceInto(a, poseA, b, settings, out);
+    }
+    out.assignUsed(gdc::collide(a, poseA, b, settings));
+}
+
+void queryInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB, const Settings& settings,
+                 Manifold& out) {
+    if (gdc::detail::boxBoxApplies(a, b, settings)) return gdc::detail::collideBoxBoxInto(a, poseA, b, poseB, settings, out);
+    out.assignUsed(gdc::collide(a, poseA, b, poseB, settings));
 }
 
 // The settings for one core call: `settings`, or a copy with the caller's smaller limit.
@@ -351,10 +406,11 @@ int collidePolytopeWithPlane(dGeomID o1, int class1, dGeomID o2, int class2, int
     const Polytope* known = polytopeFor(body, planeFirst ? class2 : class1, pose, settings, cache);
     if (!known) return collideWithOde(o1, class1, o2, class2, maxContacts, contact, skip);
     const Polytope& polytope = *known;
-    const HalfSpace halfSpace = halfSpaceOf(planeFirst ? o1 : o2, cache);
+    const detail::ThreadCache::PlaneSlot& plane = planeOf(planeFirst ? o1 : o2, cache);
+    const HalfSpace halfSpace{plane.unit, plane.raw[3]};
     const Manifold& manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) -> const Manifold& {
         return queryThrough(
-            pairCache, o1, o2, cache.scratch, [&] { return gdc::collide(polytope, pose, halfSpace, pairSettings); },
+            pairCache, o1, o2, cache.scratch, [&](Manifold& out) { queryInto(polytope, pose, plane, halfSpace, pairSettings, out); },
             [&](PairCache& entry, Manifold& carried) -> const Manifold& {
                 return gdc::collideInto(polytope, pose, halfSpace, pairSettings, entry, carried);
             });
@@ -390,9 +446,9 @@ int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int
     const Manifold& manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) -> const Manifold& {
         return queryThrough(
             pairCache, o1, o2, cache.scratch,
-            [&] {
-                return swapped ? gdc::collide(polytope2, pose2, polytope1, pose1, pairSettings)
-                               : gdc::collide(polytope1, pose1, polytope2, pose2, pairSettings);
+            [&](Manifold& out) {
+                swapped ? queryInto(polytope2, pose2, polytope1, pose1, pairSettings, out)
+                        : queryInto(polytope1, pose1, polytope2, pose2, pairSettings, out);
             },
             [&](PairCache& entry, Manifold& carried) -> const Manifold& {
                 return swapped ? gdc::collideInto(polytope2, pose2, polytope1, pose1, pairSettings, entry, carried)

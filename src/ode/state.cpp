@@ -1,5 +1,7 @@
 #include "state.hpp"
 
+#include "../half_space.hpp"
+
 #include "pair_cache_table.hpp"
 
 #include <gdcontact/ode.hpp>
@@ -257,6 +259,7 @@ void forgetConvex(const void* address) noexcept {
             freeUnreadIndexes(s);
         }
         s.convexCount.fetch_sub(1, std::memory_order_relaxed);
+        convexesForgotten.fetch_add(1, std::memory_order_release);  // every thread's AABB memo is void
     }
 }
 
@@ -481,12 +484,12 @@ const Polytope& borrowedBoxPolytopeSlow(ThreadCache& cache, double halfX, double
     return *oldest->polytope;
 }
 
-Vec3 unitPlaneNormalSlow(ThreadCache& cache, double a, double b, double c) {
+const ThreadCache::PlaneSlot& planeSlotSlow(ThreadCache& cache, double a, double b, double c, double d) {
     for (int i = 0; i < ThreadCache::kPlaneSlots; ++i) {
         const ThreadCache::PlaneSlot& slot = cache.planes[i];
-        if (slot.raw[0] == a && slot.raw[1] == b && slot.raw[2] == c) {
+        if (slot.raw[0] == a && slot.raw[1] == b && slot.raw[2] == c && slot.raw[3] == d) {
             cache.lastPlane = i;
-            return slot.unit;
+            return slot;
         }
     }
     cache.lastPlane = (cache.lastPlane + 1) % ThreadCache::kPlaneSlots;
@@ -494,8 +497,17 @@ Vec3 unitPlaneNormalSlow(ThreadCache& cache, double a, double b, double c) {
     slot.raw[0] = a;
     slot.raw[1] = b;
     slot.raw[2] = c;
+    slot.raw[3] = d;
     slot.unit = Vec3(a, b, c).normalized();
-    return slot.unit;
+    slot.normalised = false;
+    try {
+        const gdc::detail::UnitHalfSpace normalised = gdc::detail::normaliseHalfSpace(HalfSpace{slot.unit, d});
+        slot.normalisedNormal = normalised.normal;
+        slot.normalisedOffset = normalised.offset;
+        slot.normalised = true;
+    } catch (const InvalidInput&) {  // a bad plane: each call's core query reports it
+    }
+    return slot;
 }
 
 bool matchesAabb(const Polytope& hull, const Pose& pose, dGeomID geom, int bruteForceLimit, int axes) {
@@ -528,6 +540,8 @@ bool odeIsInitialized() {
 }
 
 std::atomic<std::uint64_t> installedSettingsGeneration{1};
+
+std::atomic<std::uint64_t> convexesForgotten{0};
 
 const Settings& refreshInstalledSettings(ThreadCache& cache) {
     State& s = state();

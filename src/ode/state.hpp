@@ -106,8 +106,14 @@ struct ThreadCache {
     const void* protectedConvexTable = nullptr;
 
     struct PlaneSlot {
-        double raw[3] = {NAN, NAN, NAN};  // NaN: never equal, so an empty slot never hits
-        Vec3 unit = Vec3::Zero();
+        double raw[4] = {NAN, NAN, NAN, NAN};  // a, b, c, d; NaN: never equal, so an empty slot never hits
+        Vec3 unit = Vec3::Zero();              // (a, b, c) normalised: the HalfSpace the core is given
+        // The core's own normalisation of that half-space (normaliseHalfSpace, half_space.hpp),
+        // made once per plane instead of per call; false where it refuses the plane (then every
+        // call takes the core's full path, which says why).
+        bool normalised = false;
+        Vec3 normalisedNormal = Vec3::Zero();
+        double normalisedOffset = 0;
     };
     static constexpr int kPlaneSlots = 4;
     PlaneSlot planes[kPlaneSlots];
@@ -116,12 +122,21 @@ struct ThreadCache {
     // Where the x-extent check of a convex's AABB (collide.cpp) found the hull's extreme vertices
     // last time, per geom (direct-mapped by address): the next check climbs from there, a few
     // steps for a body that moved a little. Only a hint: a stale entry costs a longer climb.
+    // With it, the inputs of the last check that passed (the hull, the bytes of the pose's first
+    // rotation row and position, and of the AABB's x extent): the check is a function of exactly
+    // these, so the same inputs pass again without the support queries — a geom in several pairs
+    // of a step is checked once (verifiedHull null: nothing verified). Valid only while no
+    // registered convex has been forgotten since (convexesForgotten): a new geom and hull may take
+    // a freed one's addresses.
     struct AabbHint {
         const void* geom = nullptr;
         int lower = -1;
         int upper = -1;
+        const Polytope* verifiedHull = nullptr;
+        std::uint64_t verifiedGeneration = 0;
+        double verifiedInputs[8] = {};
     };
-    static constexpr int kAabbHints = 64;
+    static constexpr int kAabbHints = 256;  // 22 KB a thread; at 64, 16 geoms already evicted each other
     AabbHint aabbHints[kAabbHints];
 
     std::uint64_t settingsGeneration = 0;  // 0: never copied
@@ -156,15 +171,21 @@ inline const Polytope& borrowedBoxPolytope(ThreadCache& cache, double halfX, dou
     return borrowedBoxPolytopeSlow(cache, halfX, halfY, halfZ);
 }
 
-/// (a, b, c) scaled to unit length, exactly as Vec3(a, b, c).normalized() gives it, remembered
-/// for the thread's last few planes: a scene has few planes, and the square root and divisions
-/// are a noticeable part of a cheap box–plane call.
-Vec3 unitPlaneNormalSlow(ThreadCache& cache, double a, double b, double c);
-inline Vec3 unitPlaneNormal(ThreadCache& cache, double a, double b, double c) {
+/// The plane a·x + b·y + c·z = d as the core takes it — (a, b, c) scaled to unit length exactly as
+/// Vec3(a, b, c).normalized() gives it, and the core's normalisation of that half-space —
+/// remembered for the thread's last few planes: a scene has few planes, and the square roots and
+/// divisions in a chain were a fifth of a cheap box–plane call's time. Valid until this thread
+/// looks up kPlaneSlots other planes.
+const ThreadCache::PlaneSlot& planeSlotSlow(ThreadCache& cache, double a, double b, double c, double d);
+inline const ThreadCache::PlaneSlot& planeSlot(ThreadCache& cache, double a, double b, double c, double d) {
     const ThreadCache::PlaneSlot& last = cache.planes[cache.lastPlane];
-    if (last.raw[0] == a && last.raw[1] == b && last.raw[2] == c) return last.unit;
-    return unitPlaneNormalSlow(cache, a, b, c);
+    if (last.raw[0] == a && last.raw[1] == b && last.raw[2] == c && last.raw[3] == d) return last;
+    return planeSlotSlow(cache, a, b, c, d);
 }
+
+/// Advanced whenever the free hook forgets a registered convex (its geom was freed): the
+/// per-thread AABB memos (ThreadCache::AabbHint) taken before are void.
+extern std::atomic<std::uint64_t> convexesForgotten;
 
 /// Advanced by every install() (under the settings lock); starts at 1, so that a thread's
 /// never-filled copy (generation 0) is stale.

@@ -72,12 +72,12 @@ Stream restingPairs(const std::function<dGeomID()>& make, int count, std::uint64
     return stream;
 }
 
-Stream cubesOnPlane(int count, std::uint64_t seed) {
+Stream cubesOnPlane(int count, std::uint64_t seed, const std::function<dGeomID()>& make = cube) {
     std::mt19937_64 random(seed);
     dGeomID ground = dCreatePlane(0, 0, 0, 1, 0);
     Stream stream;
     for (int i = 0; i < count; ++i) {
-        dGeomID box = cube();
+        dGeomID box = make();
         setPose(box, jittered(random, Vec3(0, 0, 0.5 - kOverlap)));
         stream.pairs.push_back({box, ground});
     }
@@ -99,6 +99,7 @@ Stream separatedCubes(int count, std::uint64_t seed) {
 Stream makeCase(const std::string& name) {
     if (name == "box_box") return restingPairs(cube, kPoses, 1);
     if (name == "box_plane") return cubesOnPlane(kPoses, 2);
+    if (name == "hull_plane") return cubesOnPlane(kPoses, 6, hull);  // convex–plane: the cube as a hull
     if (name == "hull_hull") return restingPairs(hull, kPoses, 3);
     if (name == "box_box_separated") return separatedCubes(kPoses, 4);
     if (name == "hull_scene_2000") return restingPairs(hull, 1000, 5);  // 2000 hull geoms
@@ -250,7 +251,7 @@ int main(int argc, char** argv) {
     if (argc < 3) {
         std::fprintf(stderr,
                      "usage: ode_adapter_overhead CASE adapter|core [ROUNDS] | dump [POSES]\n"
-                     "cases: box_box box_plane hull_hull box_box_separated hull_scene_2000\n");
+                     "cases: box_box box_plane hull_plane hull_hull box_box_separated hull_scene_2000\n");
         return 2;
     }
     const int result = measure(argv[1], argv[2], argc > 3 ? std::atoi(argv[3]) : 50);

@@ -8,7 +8,7 @@
 set -euo pipefail
 binary=${1:-build/tests/ode/ode_adapter_overhead}
 printf "%-20s %10s %10s %9s %10s %14s  %s\n" case adapter core overhead cached cached-moving "contacts/call"
-for name in box_box box_plane hull_hull box_box_separated hull_scene_2000; do
+for name in box_box box_plane hull_plane hull_hull box_box_separated hull_scene_2000; do
     rounds=50
     [ "$name" = hull_scene_2000 ] && rounds=2  # 1000 pairs a round
     declare -A perCall
