@@ -212,6 +212,24 @@ int reduceBodyPairContacts(const BodyPairContact* contacts, int count, const Bod
         }
         const double extent = (high - low).norm();
 
+        // Touching points (depth exactly 0: the adapter reports a rounding-level overlap or gap
+        // as 0) go where the cluster has overlapping ones. Such a row has a right-hand side of
+        // exactly 0 (ERP · 0 / dt), and between two bodies moving together (resting, woken from
+        // sleep, or falling side by side) an exactly zero relative velocity too: its residual w
+        // starts at exactly 0, a tie ODE's Dantzig pivoting cannot break — it stops with "LCP
+        // internal error, s <= 0 (s=0)" and zeroes the remaining forces, and the island falls
+        // through the floor, every step again (the composites heap: docs/algorithm.md). The
+        // overlapping points carry the support; the touching one adds no force ODE would not get
+        // a step later, when it overlaps.
+        bool overlapping = false;
+        for (int k = 0; k < n && !overlapping; ++k) overlapping = contacts[members[k]].depth > 0;
+        if (overlapping) {
+            int m = 0;
+            for (int k = 0; k < n; ++k)
+                if (contacts[members[k]].depth > 0) members[m++] = members[k];
+            n = m;
+        }
+
         // The pair's rounding scale, as the per-geom-pair reduction's (1e-9 of its size): depths
         // within it are equal (an exactly resting face's corners), and so are area gains within
         // it times the extent.

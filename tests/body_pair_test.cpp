@@ -396,3 +396,24 @@ TEST_CASE("body pair: a 1e-9 perturbation keeps the same points (hysteresis), an
     CHECK(reduced >= configurations);  // the budget dropped points in most of them
     CHECK(checked >= 10000);
 }
+
+TEST_CASE("body pair: touching points (depth 0) go where their cluster overlaps, and stay where nothing does") {
+    // A 3 × 3 grid resting with its corners overlapping and the other points exactly touching
+    // (depth 0: the adapter's report of a rounding-level overlap or gap). A touching row has a
+    // right-hand side of exactly 0 and, between bodies moving together, a zero relative velocity:
+    // ODE's Dantzig LCP stalls on it ("LCP internal error, s <= 0"). Within the budget and
+    // without it, the touching points are not kept.
+    auto contacts = grid(3, 3, 0.1, 0.0, 0.0);
+    for (int corner : {0, 2, 6, 8}) contacts[corner].depth = 1e-9;
+    for (int count : {4, 6, 16}) CHECK(reduce(contacts, budget(count)) == std::vector<int>{0, 2, 6, 8});
+    // Three overlap, the rest touch: the three are kept (a budget of 4 is not filled with a touching one).
+    contacts[8].depth = 0.0;
+    CHECK(reduce(contacts, budget(4)) == std::vector<int>{0, 2, 6});
+    // A second cluster (a side wall) that only touches keeps its points: it has nothing else.
+    auto wall = contacts;
+    wall.push_back({Vec3(0.3, 0, 0.1), Vec3::UnitX(), 0.0});
+    wall.push_back({Vec3(0.3, 0.2, 0.1), Vec3::UnitX(), 0.0});
+    CHECK(reduce(wall, budget(4)) == std::vector<int>{0, 2, 6, 9, 10});
+    // Budget 0 (off) keeps everything, touching or not.
+    CHECK(reduce(contacts, budget(0)).size() == 9);
+}
