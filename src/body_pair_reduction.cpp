@@ -15,6 +15,7 @@
 #include <gdcontact/manifold.hpp>
 
 #include "feature_intersection.hpp"  // detail::planeBasis: the contact plane's basis, chosen from the normal alone
+#include "reduction.hpp"             // detail::rankContacts: the per-geom-pair ranking and its hysteresis
 
 #include <algorithm>
 #include <array>
@@ -101,12 +102,17 @@ double areaGain(const std::vector<Vec2>& points, const SmallHull& hull, const Ve
     return gain;
 }
 
-// Adds points of `candidates[0, n)` to `chosen` (the kept ones, in order of choice; `size` of them)
-// until `budget`: each time the one adding the most area; ties and collinear sets (no area to add)
-// go to the farthest from every kept point, then to the first. `nearest` (per point, indexed like
+// Adds points of `candidates[0, n)` to `chosen` (the kept ones; `size` of them) until `budget`:
+// each time the one adding the most area — with the per-geom-pair reduction's hysteresis: gains
+// within `keep` (1 − Settings::reductionHysteresis) of the best count as equal and go to the
+// largest identity (a point's position along detail::identityDirection), so a perturbation
+// within the band keeps the same points. Collinear sets (no area above `areaTolerance`) spread:
+// the point farthest from every kept one, by the same band. `nearest` (per point, indexed like
 // `points`) is scratch. Returns the new size.
-int fillByArea(const std::vector<Vec2>& points, const int* candidates, int n, int budget, int* chosen, int size,
-               std::vector<double>& nearest) {
+int fillByArea(const std::vector<Vec2>& points, const std::vector<double>& identity, const int* candidates, int n,
+               int budget, double keep, double areaTolerance, int* chosen, int size, std::vector<double>& nearest,
+               std::vector<double>& gain) {
+    auto isChosen = [&](int i) { return std::find(chosen, chosen + size, i) != chosen + size; };
     for (int c = 0; c < n; ++c) {
         const int i = candidates[c];
         nearest[i] = 1e300;
@@ -114,16 +120,25 @@ int fillByArea(const std::vector<Vec2>& points, const int* candidates, int n, in
     }
     while (size < budget) {
         const SmallHull hull(points, chosen, size);
-        int best = -1;
-        double bestGain = -1, bestDistance = -1;
+        double bestGain = 0, bestSpread = 0;
+        int free = 0;
         for (int c = 0; c < n; ++c) {
             const int i = candidates[c];
-            if (nearest[i] == 0.0 && std::find(chosen, chosen + size, i) != chosen + size) continue;
-            const double gain = hull.size >= 2 ? areaGain(points, hull, points[i]) : 0.0;
-            if (gain > bestGain || (gain == bestGain && nearest[i] > bestDistance))
-                best = i, bestGain = gain, bestDistance = nearest[i];
+            if (isChosen(i)) continue;
+            ++free;
+            gain[i] = hull.size >= 2 ? areaGain(points, hull, points[i]) : 0.0;
+            bestGain = std::max(bestGain, gain[i]);
+            bestSpread = std::max(bestSpread, nearest[i]);
         }
-        if (best < 0) break;
+        if (free == 0) break;
+        const bool byArea = bestGain > areaTolerance;
+        const double threshold = byArea ? keep * bestGain : keep * keep * bestSpread;
+        int best = -1;
+        for (int c = 0; c < n; ++c) {
+            const int i = candidates[c];
+            if (isChosen(i) || (byArea ? gain[i] : nearest[i]) < threshold) continue;
+            if (best < 0 || identity[i] > identity[best]) best = i;
+        }
         chosen[size++] = best;
         for (int c = 0; c < n; ++c) {
             const int i = candidates[c];
@@ -163,7 +178,9 @@ int reduceBodyPairContacts(const BodyPairContact* contacts, int count, const Bod
     int* distinct = members + count;
     int* hull = distinct + count;  // room for 2 · count
     std::vector<Vec2> planar(static_cast<std::size_t>(count));
-    std::vector<double> nearest(static_cast<std::size_t>(count));
+    std::vector<double> nearest(static_cast<std::size_t>(count)), gain(static_cast<std::size_t>(count)),
+        identity(static_cast<std::size_t>(count));
+    std::vector<detail::RankPoint> ranked;
 
     // 1. Clusters by normal, in the order of the contacts.
     const double cosTolerance = std::cos(settings.bodyPairNormalTolerance);
@@ -195,14 +212,48 @@ int reduceBodyPairContacts(const BodyPairContact* contacts, int count, const Bod
         }
         const double extent = (high - low).norm();
 
-        // 2. Near-duplicates: deepest first (ties: the first), each kept unless a kept one is
-        //    within the merge distance. Candidates are found by a sweep along the first axis (the
-        //    distance is tiny, so there are few): no quadratic scan of the cluster.
+        // Touching points (depth exactly 0: the adapter reports a rounding-level overlap or gap
+        // as 0) go where the cluster has overlapping ones. Such a row has a right-hand side of
+        // exactly 0 (ERP · 0 / dt), and between two bodies moving together (resting, woken from
+        // sleep, or falling side by side) an exactly zero relative velocity too: its residual w
+        // starts at exactly 0, a tie ODE's Dantzig pivoting cannot break — it stops with "LCP
+        // internal error, s <= 0 (s=0)" and zeroes the remaining forces, and the island falls
+        // through the floor, every step again (the composites heap: docs/algorithm.md). The
+        // overlapping points carry the support; the touching one adds no force ODE would not get
+        // a step later, when it overlaps.
+        bool overlapping = false;
+        for (int k = 0; k < n && !overlapping; ++k) overlapping = contacts[members[k]].depth > 0;
+        if (overlapping) {
+            int m = 0;
+            for (int k = 0; k < n; ++k)
+                if (contacts[members[k]].depth > 0) members[m++] = members[k];
+            n = m;
+        }
+
+        // The pair's rounding scale, as the per-geom-pair reduction's (1e-9 of its size): depths
+        // within it are equal (an exactly resting face's corners), and so are area gains within
+        // it times the extent.
+        double deepestDepth = 0;
+        for (int k = 0; k < n; ++k) deepestDepth = std::max(deepestDepth, contacts[members[k]].depth);
+        const double tolerance = 1e-9 * (extent + deepestDepth);
+        // Identity for ties: the position along the fixed generic direction, relative to the
+        // cluster's first point (the same numbers in the swapped call).
+        for (int k = 0; k < n; ++k)
+            identity[members[k]] = (contacts[members[k]].position - first.position).dot(detail::identityDirection());
+        // Deeper, with hysteresis: depths within the tolerance are equal, the tie to the larger
+        // identity — so a perturbation within rounding keeps the same representative.
+        auto deeper = [&](int a, int b) {
+            if (std::abs(contacts[a].depth - contacts[b].depth) > tolerance) return contacts[a].depth > contacts[b].depth;
+            return identity[a] > identity[b] || (identity[a] == identity[b] && a < b);
+        };
+
+        // 2. Near-duplicates: deepest first, each kept unless a kept one is within the merge
+        //    distance. Candidates are found by a sweep along the first axis (the distance is
+        //    tiny, so there are few): no quadratic scan of the cluster.
         const double mergeDistance = kBodyPairMergeFraction * extent;
         std::copy(members, members + n, distinct);
         std::sort(distinct, distinct + n, [&](int a, int b) { return planar[a].x() < planar[b].x() || (planar[a].x() == planar[b].x() && a < b); });
-        // Pairs closer than the merge distance: each as (later in depth order, earlier).
-        auto deeper = [&](int a, int b) { return contacts[a].depth > contacts[b].depth || (contacts[a].depth == contacts[b].depth && a < b); };
+        // Pairs closer than the merge distance: each as (loser, winner by `deeper`).
         std::vector<std::pair<int, int>> close;
         for (int a = 0; a < n; ++a)
             for (int b = a + 1; b < n && planar[distinct[b]].x() - planar[distinct[a]].x() <= mergeDistance; ++b) {
@@ -211,67 +262,94 @@ int reduceBodyPairContacts(const BodyPairContact* contacts, int count, const Bod
                     close.push_back(deeper(p, q) ? std::make_pair(q, p) : std::make_pair(p, q));
             }
         std::copy(members, members + n, distinct);
-        std::stable_sort(distinct, distinct + n, [&](int a, int b) { return contacts[a].depth > contacts[b].depth; });
+        std::sort(distinct, distinct + n, [&](int a, int b) {
+            return contacts[a].depth > contacts[b].depth || (contacts[a].depth == contacts[b].depth && a < b);
+        });
         int distinctCount = n;
         if (!close.empty()) {
-            // Walk in depth order; a point goes when a deeper one it is close to was kept.
+            // Walk deepest first; a point goes when a close one that wins by `deeper` has not gone
+            // (`deeper` is not transitive, so one pass in a fixed order decides: deterministic).
             std::vector<char> dropped(static_cast<std::size_t>(count), 0);
-            distinctCount = 0;
             for (int k = 0; k < n; ++k) {
                 const int i = distinct[k];
-                bool duplicate = false;
-                for (const auto& [later, earlier] : close)
-                    if (later == i && !dropped[static_cast<std::size_t>(earlier)]) duplicate = true;
-                if (duplicate) dropped[static_cast<std::size_t>(i)] = 1;
-                else distinct[distinctCount++] = i;
+                for (const auto& [loser, winner] : close)
+                    if (loser == i && !dropped[static_cast<std::size_t>(winner)]) dropped[static_cast<std::size_t>(i)] = 1;
             }
+            distinctCount = 0;
+            for (int k = 0; k < n; ++k)
+                if (!dropped[static_cast<std::size_t>(distinct[k])]) distinct[distinctCount++] = distinct[k];
         }
         if (distinctCount <= budget) {
             kept.insert(kept.end(), distinct, distinct + distinctCount);
             continue;
         }
 
-        // 3. The budget: the deepest (distinct[0]), the farthest from it, then by area.
-        const int deepest = distinct[0];
-        std::array<int, kMaxManifoldPoints + 2> chosen;
-        chosen[0] = deepest;
-        int size = 1;
-        if (budget >= 2) {
-            int farthest = -1;
-            double farthestDistance = -1;
-            for (int k = 1; k < distinctCount; ++k) {
-                const int i = distinct[k];
-                const double d = (planar[i] - planar[deepest]).squaredNorm();
-                if (d > farthestDistance) farthest = i, farthestDistance = d;
-            }
-            chosen[size++] = farthest;
-            size = fillByArea(planar, distinct, distinctCount, budget, chosen.data(), size, nearest);
-        }
-
-        // The carried body's centre of mass over the kept polygon, where it was over the whole one.
+        // 3. The budget, by the per-geom-pair reduction's ranking (detail::rankContacts): the
+        //    deepest, the farthest from it, then by area, each with its hysteresis (gains within
+        //    Settings::reductionHysteresis of the best equal, depths within rounding equal, ties
+        //    to the larger identity). Not its centroid rule: that swaps in the point of largest
+        //    area without a band (two nearly equal swaps flip under a 1e-9 perturbation: 45 of
+        //    12 000 perturbed composites in tests/body_pair_test.cpp), and one swap cannot always
+        //    restore a centre; the rule below can, and keeps the band.
         const double push = up.dot(first.normal);  // > 0: the normal (from B into A) lifts A
         const bool carriesA = push > 0 && frame.hasCentreA, carriesB = push < 0 && frame.hasCentreB;
-        if (budget >= 3 && (carriesA || carriesB)) {
+        const bool carries = budget >= 3 && (carriesA || carriesB);
+        Vec2 centre = Vec2::Zero();
+        if (carries) {
             const Vec3 relative = (carriesA ? frame.centreA : frame.centreB) - first.position;
-            const Vec2 centre(relative.dot(u), relative.dot(v));
+            centre = Vec2(relative.dot(u), relative.dot(v));
+        }
+        ranked.resize(static_cast<std::size_t>(distinctCount));
+        for (int k = 0; k < distinctCount; ++k) {
+            const int i = distinct[k];
+            ranked[static_cast<std::size_t>(k)] = {planar[i], contacts[i].depth, identity[i]};
+        }
+        detail::RankingRule rule{budget, settings.reductionHysteresis, tolerance, detail::identityDirection()};
+        std::array<int, kMaxManifoldPoints + 2> chosen;
+        int size = detail::rankContacts(ranked.data(), distinctCount, rule, chosen.data());
+        for (int k = 0; k < size; ++k) chosen[k] = distinct[chosen[k]];
+        const int deepest = chosen[0];
+
+        // The carried body's centre of mass: where it lay over the whole polygon and is not over
+        // the kept one, keep the triangle of the deepest and two polygon vertices that holds it
+        // (the triangles of the deepest with the polygon's edges cover the polygon), filled up by
+        // area with the same band.
+        if (carries) {
             const double slack = 1e-9 * extent;
             const SmallHull keptHull(planar, chosen.data(), size);
             if (!strictlyInside(planar, keptHull.vertices.data(), keptHull.size, centre, slack)) {
                 std::copy(distinct, distinct + distinctCount, members);  // hullOf sorts its input
                 const int wholeSize = hullOf(planar, members, distinctCount, hull);
                 if (strictlyInside(planar, hull, wholeSize, centre, slack)) {
-                    // The triangles of the deepest with the polygon's edges cover the polygon (the
-                    // deepest lies in it): one of them holds the centre.
-                    for (int e = 0; e < wholeSize; ++e) {
-                        const int a = hull[e], b = hull[e + 1 == wholeSize ? 0 : e + 1];
-                        if (a == deepest || b == deepest) continue;
+                    // The largest such triangle, with the band: areas within it are equal and go
+                    // to the pair of larger identities (the larger of the two first). Not the
+                    // polygon's own edges: which points on a straight side of the polygon are
+                    // its vertices is decided by rounding.
+                    const double keep = 1 - settings.reductionHysteresis;
+                    auto triangleArea = [&](int a, int b) {
                         const int triangle[3] = {deepest, a, b};
                         const SmallHull corner(planar, triangle, 3);
-                        // Closed triangles: a centre on the diagonal from the deepest counts for both sides.
-                        if (!strictlyInside(planar, corner.vertices.data(), corner.size, centre, -slack)) continue;
-                        std::copy(triangle, triangle + 3, chosen.begin());
-                        size = fillByArea(planar, distinct, distinctCount, budget, chosen.data(), 3, nearest);
-                        break;
+                        // Closed triangles: a centre on a side from the deepest counts for both.
+                        if (!strictlyInside(planar, corner.vertices.data(), corner.size, centre, -slack)) return -1.0;
+                        return 0.5 * std::abs(cross2(planar[a] - planar[deepest], planar[b] - planar[deepest]));
+                    };
+                    double largest = 0;
+                    for (int j = 0; j < distinctCount; ++j)
+                        for (int k = j + 1; k < distinctCount; ++k)
+                            if (distinct[j] != deepest && distinct[k] != deepest)
+                                largest = std::max(largest, triangleArea(distinct[j], distinct[k]));
+                    int bestA = -1, bestB = -1;
+                    auto rank = [&](int a, int b) { return std::make_pair(std::max(identity[a], identity[b]), std::min(identity[a], identity[b])); };
+                    for (int j = 0; j < distinctCount && largest > 0; ++j)
+                        for (int k = j + 1; k < distinctCount; ++k) {
+                            const int a = distinct[j], b = distinct[k];
+                            if (a == deepest || b == deepest || triangleArea(a, b) < keep * largest) continue;
+                            if (bestA < 0 || rank(a, b) > rank(bestA, bestB)) bestA = a, bestB = b;
+                        }
+                    if (bestA >= 0) {
+                        chosen[0] = deepest, chosen[1] = bestA, chosen[2] = bestB;
+                        size = fillByArea(planar, identity, distinct, distinctCount, budget, keep, tolerance * extent,
+                                          chosen.data(), 3, nearest, gain);
                     }
                 }
             }

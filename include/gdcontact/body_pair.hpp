@@ -38,14 +38,21 @@ struct BodyPairFrame {
 /// 1. Clusters: each contact in turn joins the first cluster whose first normal is within
 ///    settings.bodyPairNormalTolerance of its own, else starts one (opposite normals — a body
 ///    clamped between two faces — and supports at an angle stay separate).
-/// 2. Merges near-duplicates in each cluster: points whose positions, seen along the cluster's
+/// 2. Touching points (depth exactly 0) are left out of a cluster that has overlapping ones
+///    (depth > 0): their rows would give ODE's Dantzig LCP an exactly zero residual between bodies
+///    moving together, on which it stalls ("LCP internal error"; docs/algorithm.md).
+/// 3. Merges near-duplicates in each cluster: points whose positions, seen along the cluster's
 ///    normal, lie within kBodyPairMergeFraction of the cluster's extent of each other are the same
-///    row to the solver; the deepest of them is kept (ties: the first).
-/// 3. Reduces each cluster to settings.maxBodyPairContacts: the deepest, the farthest from it,
-///    then each time the point that adds the most area to the kept polygon; then, if the carried
-///    body's centre of mass (see BodyPairFrame) lay inside the cluster's polygon but not inside
-///    the kept one, the deepest and the two polygon vertices whose triangle with it contains the
-///    centre, filled up again by area.
+///    row to the solver; the deeper of them is kept.
+/// 4. Reduces each cluster to settings.maxBodyPairContacts by the per-geom-pair ranking: the
+///    deepest, the farthest from it, then each time the point that adds the most area to the kept
+///    polygon; then, if the carried body's centre of mass (see BodyPairFrame) lay inside the
+///    cluster's polygon but not inside the kept one, the largest triangle of the deepest and two
+///    points that contains the centre, filled up again by area.
+/// Every choice has the per-geom-pair reduction's hysteresis: values within
+/// settings.reductionHysteresis of the best (depths: within 1e-9 of the cluster's size) are equal
+/// and go to the point of larger position along a fixed generic direction, so a perturbation
+/// within rounding keeps the same points.
 /// Throws InvalidInput for a negative count or a contact with a non-finite field or a normal that
 /// is not unit length (to 1e-6).
 GDCONTACT_API int reduceBodyPairContacts(const BodyPairContact* contacts, int count, const BodyPairFrame& frame,

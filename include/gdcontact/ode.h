@@ -141,8 +141,33 @@ GDCONTACT_C_API int gdcSetThreadCount(int threads) GDCONTACT_C_NOEXCEPT;
 GDCONTACT_C_API void gdcSetPairCacheEnabled(int enabled) GDCONTACT_C_NOEXCEPT;
 GDCONTACT_C_API void gdcClearPairCache(void) GDCONTACT_C_NOEXCEPT;
 
-/* This thread's last error message, "" if none. gdcInstall, gdcCreateConvex*, gdcSpaceCollide and
- * gdcSetThreadCount set it when they fail and clear it when they succeed. The string stays valid
+/* gdc::ode::reduceBodyPair, the per-body-pair contact budget for a program with its own near
+ * callback (what gdcSpaceCollide applies by itself). `contacts` (count of them at stride `skip`,
+ * at least sizeof(dContactGeom)) are every contact one step's near callback got between the
+ * geoms of body b1 and those of body b2 (several geom pairs: bodies made of several geoms), each
+ * as dCollide gave it (g1, g2 name its pair's geoms, one on b1 and one on b2, in either order;
+ * normal from g2 into g1). b1 or b2 may be 0 (the static world), not both. They are clustered by
+ * normal (settings->bodyPairNormalTolerance), near-duplicates merged, and each cluster reduced to
+ * settings->maxBodyPairContacts: the deepest kept, the widest support, the carried body's centre
+ * of mass over it; ties within settings->reductionHysteresis go to a fixed identity, so the same
+ * points are kept from step to step. The survivors are moved to the front of the array in their
+ * order, each unchanged; returns their count. Contacts that all come from one geom pair, and
+ * everything when maxBodyPairContacts is 0, are kept as they are. The mirrored call (b1 and b2
+ * swapped) keeps the same contacts. settings NULL: gdcontact's defaults (gdcDefaultSettings).
+ * Returns a negative number, -GDC_ERROR_INVALID_ARGUMENT (and the others as gdcInstall's), with
+ * gdcLastError() saying why and the array left as it was, for: a setting out of range, count < 0,
+ * contacts NULL with count > 0, skip < sizeof(dContactGeom), b1 == b2, a contact whose geoms are
+ * not one on b1 and one on b2, a normal that is not unit length or a field that is not finite.
+ *
+ *     per pair of bodies, after dSpaceCollide collected their contacts into `pair[0..n)`:
+ *     int kept = gdcReduceBodyPair(b1, b2, pair, n, sizeof(dContactGeom), &settings);
+ *     if (kept < 0) { fprintf(stderr, "%s\n", gdcLastError()); kept = n; }
+ *     for (i = 0; i < kept; ++i) { contact.geom = pair[i]; ... dJointCreateContact ... } */
+GDCONTACT_C_API int gdcReduceBodyPair(dBodyID b1, dBodyID b2, dContactGeom* contacts, int count, int skip,
+                                      const gdcSettings* settings) GDCONTACT_C_NOEXCEPT;
+
+/* This thread's last error message, "" if none. gdcInstall, gdcCreateConvex*, gdcSpaceCollide,
+ * gdcSetThreadCount and gdcReduceBodyPair set it when they fail and clear it when they succeed. The string stays valid
  * until this thread's next call of one of those functions. Never NULL. */
 GDCONTACT_C_API const char* gdcLastError(void) GDCONTACT_C_NOEXCEPT;
 

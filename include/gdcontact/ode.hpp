@@ -124,9 +124,10 @@ namespace gdc::ode {
 
 /// Reduces the contacts between two bodies made of several geoms (composites) to the body-pair
 /// budget: settings.maxBodyPairContacts per contact direction (gdc::reduceBodyPairContacts:
-/// clustered by normal, near-duplicates merged, the deepest kept, the widest support, the carried
-/// body's centre of mass — dBodyGetPosition — kept over it; the carried body is the one the
-/// normal pushes against its world's gravity). `contacts` (count of them at stride `skip`) are
+/// clustered by normal, touching points left out where others overlap, near-duplicates merged,
+/// the deepest kept, the widest support, the carried body's centre of mass — dBodyGetPosition —
+/// kept over it, ties within settings.reductionHysteresis to a fixed identity; the carried body is
+/// the one the normal pushes against its world's gravity). The C twin is gdcReduceBodyPair. `contacts` (count of them at stride `skip`) are
 /// those of every geom pair between b1 and b2 a near callback collected in one step, each as
 /// dCollide gave it (g1, g2 name the pair's geoms; normal from g2 into g1; either geom order).
 /// b1 or b2 may be 0 (the static world), not both. The survivors are moved to the front, in

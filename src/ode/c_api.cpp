@@ -56,9 +56,9 @@ int guarded(Body&& body) noexcept {
     }
 }
 
-gdc::Settings toSettings(const gdcSettings& in) {
+gdc::Settings toSettings(const gdcSettings& in, const char* caller = "gdcInstall") {
     if (in.normalMethod != GDC_NORMAL_GROWTH_DISTANCE && in.normalMethod != GDC_NORMAL_SEPARATING_AXIS)
-        throw gdc::InvalidInput("gdcInstall: gdcSettings::normalMethod must be GDC_NORMAL_GROWTH_DISTANCE (0) "
+        throw gdc::InvalidInput(std::string(caller) + ": gdcSettings::normalMethod must be GDC_NORMAL_GROWTH_DISTANCE (0) "
                                 "or GDC_NORMAL_SEPARATING_AXIS (1), not " + std::to_string(in.normalMethod));
     gdc::Settings out;
     out.rayCastTolerance = in.rayCastTolerance;
@@ -180,6 +180,17 @@ void gdcClearPairCache(void) noexcept {
         gdc::ode::clearPairCache();
     } catch (...) {  // an allocation inside the table's clean-up: nothing to report, nothing left half done
     }
+}
+
+int gdcReduceBodyPair(dBodyID b1, dBodyID b2, dContactGeom* contacts, int count, int skip,
+                      const gdcSettings* settings) noexcept {
+    int kept = 0;
+    const int code = guarded([&] {
+        // gdc::ode::reduceBodyPair validates the settings and every contact before it moves any.
+        kept = gdc::ode::reduceBodyPair(b1, b2, contacts, count, skip,
+                                        settings ? toSettings(*settings, "gdcReduceBodyPair") : gdc::Settings{});
+    });
+    return code == GDC_OK ? kept : -code;
 }
 
 const char* gdcLastError(void) noexcept { return lastError; }

@@ -5,9 +5,12 @@
 
 #include <catch2/catch.hpp>
 
+#include <cstring>
+#include <random>
 #include <string>
 #include <thread>
 #include <type_traits>
+#include <vector>
 
 TEST_CASE("gdcDefaultSettings gives gdc::Settings' defaults, field by field") {
     gdcSettings c;
@@ -89,5 +92,83 @@ TEST_CASE("A failed install leaves the installed settings as they were") {
     CHECK(dCollide(a, b, 8, contacts, sizeof(dContactGeom)) == 2);
     dGeomDestroy(a);
     dGeomDestroy(b);
+    dCloseODE();
+}
+
+TEST_CASE("gdcReduceBodyPair keeps what gdc::ode::reduceBodyPair keeps, over random composites") {
+    // Two bodies of 2–4 boxes each, the upper resting on the lower at a random yaw, offset and
+    // tilt (several geom pairs, coplanar and tilted contacts), and a composite on the static world:
+    // the C function and the C++ one must return the same count and the same array, for several
+    // settings, in both body orders.
+    dInitODE2(0);
+    REQUIRE(gdcInstall(nullptr) == GDC_OK);
+    dWorldID world = dWorldCreate();
+    dWorldSetGravity(world, 0, 0, -9.81);
+    std::mt19937 random(22);
+    std::uniform_real_distribution<double> unit(-1, 1), size(0.1, 0.4);
+    int compared = 0, reduced = 0;
+    for (int trial = 0; trial < 200; ++trial) {
+        dBodyID upper = dBodyCreate(world);
+        dBodyID lower = trial % 4 == 0 ? nullptr : dBodyCreate(world);  // a quarter on the static world
+        std::vector<dGeomID> upperParts, lowerParts;
+        auto addParts = [&](dBodyID body, double top, std::vector<dGeomID>& parts) {
+            const int count = 2 + static_cast<int>(random() % 3);
+            for (int k = 0; k < count; ++k) {
+                const double lx = size(random), ly = size(random), lz = 0.1;
+                dGeomID g = dCreateBox(nullptr, lx, ly, lz);
+                const double x = 0.2 * unit(random), y = 0.2 * unit(random), z = top > 0 ? lz / 2 : -lz / 2;
+                if (body) {
+                    dGeomSetBody(g, body);
+                    dGeomSetOffsetPosition(g, x, y, z);
+                } else {
+                    dGeomSetPosition(g, x, y, z);
+                }
+                parts.push_back(g);
+            }
+        };
+        addParts(upper, 1, upperParts);
+        addParts(lower, -1, lowerParts);
+        if (lower) dBodySetPosition(lower, 0, 0, 0);
+        dBodySetPosition(upper, 0.1 * unit(random), 0.1 * unit(random), -1e-3);
+        dMatrix3 rotation;
+        dRFromAxisAndAngle(rotation, unit(random), unit(random), 10, trial % 2 ? 3.14159 * unit(random) : 0.0);
+        dBodySetRotation(upper, rotation);
+        std::vector<dContactGeom> contacts;
+        for (dGeomID a : upperParts)
+            for (dGeomID b : lowerParts) {
+                dContactGeom buffer[8];
+                const int n = random() % 2 ? dCollide(a, b, 8, buffer, sizeof(dContactGeom))
+                                           : dCollide(b, a, 8, buffer, sizeof(dContactGeom));
+                contacts.insert(contacts.end(), buffer, buffer + n);
+            }
+        for (int budget : {3, 4, 6}) {
+            gdcSettings c;
+            gdcDefaultSettings(&c);
+            c.maxBodyPairContacts = budget;
+            gdc::Settings cpp;
+            cpp.maxBodyPairContacts = budget;
+            for (int swapped = 0; swapped < 2; ++swapped) {
+                dBodyID b1 = swapped ? lower : upper, b2 = swapped ? upper : lower;
+                std::vector<dContactGeom> viaC = contacts, viaCpp = contacts;
+                const int n = static_cast<int>(contacts.size());
+                const int keptC = gdcReduceBodyPair(b1, b2, viaC.data(), n, sizeof(dContactGeom), &c);
+                const int keptCpp = gdc::ode::reduceBodyPair(b1, b2, viaCpp.data(), n, sizeof(dContactGeom), cpp);
+                INFO("trial " << trial << " budget " << budget << " swapped " << swapped);
+                REQUIRE(keptC == keptCpp);
+                CHECK(std::memcmp(viaC.data(), viaCpp.data(), sizeof(dContactGeom) * static_cast<std::size_t>(keptC)) == 0);
+                CHECK(std::string(gdcLastError()).empty());
+                ++compared;
+                reduced += keptC < n;
+            }
+        }
+        for (dGeomID g : upperParts) dGeomDestroy(g);
+        for (dGeomID g : lowerParts) dGeomDestroy(g);
+        dBodyDestroy(upper);
+        if (lower) dBodyDestroy(lower);
+    }
+    CHECK(compared == 1200);
+    CHECK(reduced > 300);  // the budget dropped contacts in many of them
+    STATIC_REQUIRE(noexcept(gdcReduceBodyPair(nullptr, nullptr, nullptr, 0, 0, nullptr)));
+    dWorldDestroy(world);
     dCloseODE();
 }

@@ -171,6 +171,88 @@ static void checkSpaceCollide(void) {
     dSpaceDestroy(space);
 }
 
+/* gdcReduceBodyPair: a body of two unit cubes side by side (a 2 x 1 slab) sinking 0.01 into a
+ * static ground box. Two geom pairs give 4 + 4 corners, two of them twice (the cubes' shared
+ * edge); the budget of 4 keeps the slab's own four corners (x = +-1, y = +-0.5): the largest area. */
+static int collectSlab(dGeomID ground, dGeomID left, dGeomID right, dContactGeom* contacts) {
+    int n = dCollide(ground, left, 8, contacts, sizeof(dContactGeom));
+    n += dCollide(right, ground, 8, contacts + n, sizeof(dContactGeom)); /* either geom order */
+    return n;
+}
+
+static void checkReduceBodyPair(void) {
+    dWorldID world = dWorldCreate();
+    dBodyID slab = dBodyCreate(world), other = dBodyCreate(world);
+    dGeomID ground = dCreateBox(0, 4, 4, 1);
+    dGeomID left = dCreateBox(0, 1, 1, 1), right = dCreateBox(0, 1, 1, 1);
+    dContactGeom contacts[16], copy[16];
+    gdcSettings settings;
+    int n, kept, keptMirrored, i, j, corners = 0;
+    dWorldSetGravity(world, 0, 0, -9.81);
+    dGeomSetPosition(ground, 0, 0, -0.5);
+    dGeomSetBody(left, slab);
+    dGeomSetBody(right, slab);
+    dGeomSetOffsetPosition(left, -0.5, 0, 0);
+    dGeomSetOffsetPosition(right, 0.5, 0, 0);
+    dBodySetPosition(slab, 0, 0, 0.49);
+    gdcDefaultSettings(&settings);
+    CHECK(settings.maxBodyPairContacts == 4);
+
+    n = collectSlab(ground, left, right, contacts);
+    CHECK(n == 8);
+    kept = gdcReduceBodyPair(0, slab, contacts, n, sizeof(dContactGeom), &settings);
+    CHECK(kept == 4);
+    CHECK(strcmp(gdcLastError(), "") == 0);
+    for (i = 0; i < kept && i < 16; ++i) {
+        corners += fabs(fabs(contacts[i].pos[0]) - 1.0) < 1e-9 && fabs(fabs(contacts[i].pos[1]) - 0.5) < 1e-9;
+        CHECK(fabs(contacts[i].depth - 0.01) < 1e-9);
+        CHECK(contacts[i].g1 == ground || contacts[i].g2 == ground);
+    }
+    CHECK(corners == 4);
+    /* The mirrored call (the bodies swapped) keeps the same contacts; NULL settings: the defaults. */
+    n = collectSlab(ground, left, right, copy);
+    keptMirrored = gdcReduceBodyPair(slab, 0, copy, n, sizeof(dContactGeom), NULL);
+    CHECK(keptMirrored == kept);
+    for (i = 0; i < kept && i < keptMirrored; ++i)
+        for (j = 0; j < 3; ++j) CHECK(copy[i].pos[j] == contacts[i].pos[j]);
+    /* Budget 0: every contact kept. */
+    settings.maxBodyPairContacts = 0;
+    n = collectSlab(ground, left, right, contacts);
+    CHECK(gdcReduceBodyPair(0, slab, contacts, n, sizeof(dContactGeom), &settings) == n);
+    settings.maxBodyPairContacts = 4;
+
+    /* Bad input: a negative error code, a message, the array untouched. */
+    n = collectSlab(ground, left, right, contacts);
+    memcpy(copy, contacts, sizeof contacts);
+#define CHECK_REFUSED(call, words)                                                            \
+    do {                                                                                      \
+        CHECK((call) == -GDC_ERROR_INVALID_ARGUMENT);                                         \
+        CHECK(strstr(gdcLastError(), words) != NULL);                                         \
+        CHECK(memcmp(copy, contacts, sizeof contacts) == 0);                                  \
+    } while (0)
+    CHECK_REFUSED(gdcReduceBodyPair(slab, slab, contacts, n, sizeof(dContactGeom), &settings), "same body");
+    CHECK_REFUSED(gdcReduceBodyPair(0, 0, contacts, n, sizeof(dContactGeom), &settings), "static world");
+    CHECK_REFUSED(gdcReduceBodyPair(0, slab, contacts, -1, sizeof(dContactGeom), &settings), "negative");
+    CHECK_REFUSED(gdcReduceBodyPair(0, slab, NULL, n, sizeof(dContactGeom), &settings), "null");
+    CHECK_REFUSED(gdcReduceBodyPair(0, slab, contacts, n, 8, &settings), "skip");
+    CHECK_REFUSED(gdcReduceBodyPair(other, slab, contacts, n, sizeof(dContactGeom), &settings), "not between");
+    settings.maxBodyPairContacts = 17;
+    CHECK_REFUSED(gdcReduceBodyPair(0, slab, contacts, n, sizeof(dContactGeom), &settings), "maxBodyPairContacts");
+    settings.maxBodyPairContacts = 4;
+    contacts[2].normal[2] = 0.5; /* not unit length */
+    memcpy(copy, contacts, sizeof contacts);
+    CHECK_REFUSED(gdcReduceBodyPair(0, slab, contacts, n, sizeof(dContactGeom), &settings), "unit");
+#undef CHECK_REFUSED
+    /* Nothing to reduce: 0 contacts. */
+    CHECK(gdcReduceBodyPair(0, slab, NULL, 0, sizeof(dContactGeom), &settings) == 0);
+    CHECK(strcmp(gdcLastError(), "") == 0);
+
+    dGeomDestroy(ground);
+    dGeomDestroy(left);
+    dGeomDestroy(right);
+    dWorldDestroy(world);
+}
+
 int main(void) {
     dSpaceID space;
     dGeomID fromPoints, fromPlanes, box;
@@ -209,6 +291,7 @@ int main(void) {
         CHECK(gdcInstall(NULL) == GDC_OK);
     }
     checkSpaceCollide();
+    checkReduceBodyPair();
     dSpaceDestroy(space); /* destroys the geoms; gdcontact releases their hulls */
     dCloseODE();
 
