@@ -35,7 +35,7 @@
 
 namespace {
 
-enum class Order { Last, First, ImportanceLast, ImportanceFirst };
+enum class Order { Last, First, ImportanceLast, ImportanceFirst, Cyclic };
 
 struct Contender {
     bool ode = false;
@@ -59,13 +59,14 @@ Contender parseContender(const std::string& text) {
         std::exit(2);
     }
     const std::string o = order;
-    if (o != "first" && o != "last" && o != "importance-last" && o != "importance-first") {
+    if (o != "first" && o != "last" && o != "importance-last" && o != "importance-first" && o != "cyclic") {
         std::fprintf(stderr, "bad order %s (first, last, importance-last, importance-first)\n", order);
         std::exit(2);
     }
     contender.order = o == "first"              ? Order::First
                       : o == "importance-last"  ? Order::ImportanceLast
                       : o == "importance-first" ? Order::ImportanceFirst
+                      : o == "cyclic"           ? Order::Cyclic
                                                 : Order::Last;
     contender.settings.maxContacts = budget;
     contender.settings.reductionHysteresis = hysteresis;
@@ -118,10 +119,35 @@ void nearCallback(void* data, dGeomID o1, dGeomID o2) {
     dBodyID b1 = dGeomGetBody(o1), b2 = dGeomGetBody(o2);
     if (b1 && b2 && dAreConnectedExcluding(b1, b2, dJointTypeContact)) return;
     dContactGeom geoms[16];
-    const bool importance =
-        w.contender->order == Order::ImportanceLast || w.contender->order == Order::ImportanceFirst;
+    const bool importance = w.contender->order == Order::ImportanceLast ||
+                            w.contender->order == Order::ImportanceFirst || w.contender->order == Order::Cyclic;
     const int n = importance ? coreContacts(o1, o2, w.contender->settings, geoms) : dCollide(o1, o2, w.contender->ode ? w.contender->odeBudget : 16, geoms, sizeof(dContactGeom));
     if (w.contender->order == Order::ImportanceFirst) std::reverse(geoms, geoms + n);
+    if (w.contender->order == Order::Cyclic && n > 2) {
+        // Around the polygon from the deepest point (the core's first), by angle about the points'
+        // mean in a basis of the contact plane; made into joints reversed, so that the solver meets
+        // them deepest first and then around.
+        double mean[3] = {0, 0, 0};
+        for (int i = 0; i < n; ++i)
+            for (int k = 0; k < 3; ++k) mean[k] += geoms[i].pos[k] / n;
+        const dReal* nz = geoms[0].normal;
+        double u[3] = {1, 0, 0};
+        if (std::abs(nz[0]) > 0.9) u[0] = 0, u[1] = 1;
+        const double d = u[0] * nz[0] + u[1] * nz[1] + u[2] * nz[2];
+        for (int k = 0; k < 3; ++k) u[k] -= d * nz[k];
+        const double v[3] = {nz[1] * u[2] - nz[2] * u[1], nz[2] * u[0] - nz[0] * u[2], nz[0] * u[1] - nz[1] * u[0]};
+        auto angle = [&](const dContactGeom& g) {
+            double x = 0, y = 0;
+            for (int k = 0; k < 3; ++k) x += (g.pos[k] - mean[k]) * u[k], y += (g.pos[k] - mean[k]) * v[k];
+            return std::atan2(y, x);
+        };
+        const double start = angle(geoms[0]);
+        std::stable_sort(geoms + 1, geoms + n, [&](const dContactGeom& a, const dContactGeom& b) {
+            auto from = [&](const dContactGeom& g) { double t = angle(g) - start; return t < 0 ? t + 6.283185307179586 : t; };
+            return from(a) < from(b);
+        });
+        std::reverse(geoms, geoms + n);
+    }
     for (int i = 0; i < n; ++i) {
         dContact contact{};
         contact.surface.mode = dContactApprox1;
@@ -336,9 +362,11 @@ int main(int argc, char** argv) {
                     percentile(allAsleep, 0.5),
                     static_cast<int>(std::count_if(allAsleep.begin(), allAsleep.end(), [](double t) { return !std::isfinite(t); })));
     if (scene == "heavycube") {
-        double mean = 0;
+        double mean = 0, square = 0;
         for (double d : drifts) mean += d / seeds;
-        std::printf("  drift mean %.4f", mean);
+        for (double d : drifts) square += (d - mean) * (d - mean);
+        // The standard error of the mean: the sample's standard deviation over √seeds.
+        std::printf("  drift mean %.4f (standard error %.4f)", mean, seeds > 1 ? std::sqrt(square / (seeds - 1) / seeds) : 0.0);
     }
     if (scene == "plates20") std::printf("  largest sink p50 %.4f p90 %.4f m", percentile(drops, 0.5), percentile(drops, 0.9));
     if (!failedSeeds.empty()) {
