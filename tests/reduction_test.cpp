@@ -4,6 +4,7 @@
 // mirrored set, the same points under tiny perturbations, and the centroid rule.
 #include "geometry_oracles.hpp"
 #include "reduction.hpp"
+#include "reduction_reference.hpp"
 
 #include <gdcontact/gdcontact.hpp>
 
@@ -296,4 +297,72 @@ TEST_CASE("A tiny perturbation of a resting face pair keeps the same contact poi
     // Exactly resting faces have equal depths at every corner: the first point is the tie's
     // identity, the same under any perturbation within the band.
     CHECK(sameOrders == checked);
+}
+
+// The ranking's cheaper general path (a list of free points, the kept hull's edges computed once,
+// no hull update that no later step reads) does the same arithmetic as before: it must choose the
+// same points in the same order as the former code (tests/reduction_reference.hpp, verbatim) — on
+// 200000 sets: convex polygons of 3–16 points, random clouds (points inside the hull), clusters of
+// near-duplicates (an octagon of two almost aligned squares), collinear and repeated points, equal
+// depths, every budget, three hysteresis bands and 0–2 centroids inside or outside.
+TEST_CASE("The ranking's cheaper path chooses exactly what the former code chose") {
+    std::mt19937 random(2026);
+    std::uniform_real_distribution<double> unit(0, 1);
+    long compared = 0, differing = 0, centroidSwaps = 0;
+    for (int trial = 0; trial < 200000; ++trial) {
+        const int n = 3 + trial % 14;
+        const int kind = (trial / 14) % 5;
+        std::vector<detail::RankPoint> points;
+        if (kind == 0) {  // a convex polygon
+            for (const auto& q : randomPolygon(random, n)) points.push_back({q.planar, q.depth, 0});
+        } else if (kind == 1) {  // a cloud: hull vertices and interior points
+            for (int i = 0; i < n; ++i) points.push_back({Vec2(unit(random) - 0.5, unit(random) - 0.5), 0.01 * unit(random), 0});
+        } else if (kind == 2) {  // near-duplicate pairs: the octagon of two almost aligned squares
+            const double turn = 0.02 * (unit(random) - 0.5);
+            for (int i = 0; i < n; ++i) {
+                const double angle = 0.7853981633974483 + 1.5707963267948966 * (i % 4) + (i / 4 % 2 ? turn : -turn);
+                points.push_back({Vec2(0.35 * std::cos(angle), 0.35 * std::sin(angle)) + Vec2(1e-3 * unit(random), 1e-3 * unit(random)),
+                                  1e-3 * unit(random), 0});
+            }
+        } else if (kind == 3) {  // collinear, some repeated
+            const Vec2 direction(std::cos(6.283 * unit(random)), std::sin(6.283 * unit(random)));
+            for (int i = 0; i < n; ++i) points.push_back({direction * std::floor(8 * unit(random)) * 0.1, 0.01 * unit(random), 0});
+        } else {  // a resting face: every depth equal, a polygon with repeated points
+            for (const auto& q : randomPolygon(random, n)) points.push_back({q.planar, 0.005, 0});
+            points[static_cast<size_t>(n - 1)] = points[0];
+        }
+        for (auto& p : points) p.identity = p.planar.x() * 0.7548776662466927 + p.planar.y() * 0.5698402909980532 + 0.01 * unit(random);
+        if (trial % 7 == 0 && n > 3) points[1].identity = points[2].identity;  // a tie of identities too
+        const double hysteresis = trial % 3 == 0 ? 0.0 : trial % 3 == 1 ? 0.01 : 0.1;
+        const Vec2 centroids[2] = {Vec2(0.3 * (unit(random) - 0.5), 0.3 * (unit(random) - 0.5)),
+                                   Vec2(unit(random) - 0.5, unit(random) - 0.5)};
+        for (int budget = 1; budget <= n + 1; ++budget) {
+            detail::RankingRule rule = ruleFor(budget, hysteresis);
+            rule.tolerance = 1e-9;
+            rule.centroids = centroids;
+            rule.centroidCount = trial % 3;
+            int ours[kMaxManifoldPoints], former[kMaxManifoldPoints];
+            const int count = detail::rankContacts(points.data(), n, rule, ours);
+            const int formerCount = reference::rankContacts(points.data(), n, rule, former);
+            ++compared;
+            const bool same = count == formerCount && std::equal(ours, ours + count, former);
+            if (!same) {
+                ++differing;
+                INFO("trial " << trial << " kind " << kind << " points " << n << " budget " << budget);
+                CHECK(same);
+            }
+            // How often the centroid rule swapped (it must be exercised, not only skipped).
+            if (rule.centroidCount > 0 && budget < n && budget >= 3) {
+                detail::RankingRule plain = rule;
+                plain.centroidCount = 0;
+                int greedy[kMaxManifoldPoints];
+                reference::rankContacts(points.data(), n, plain, greedy);
+                centroidSwaps += !std::equal(greedy, greedy + count, former);
+            }
+        }
+    }
+    WARN(compared << " rankings compared, " << differing << " differ, " << centroidSwaps << " with a centroid swap");
+    CHECK(differing == 0);
+    CHECK(compared >= 1000000);
+    CHECK(centroidSwaps > 1000);
 }

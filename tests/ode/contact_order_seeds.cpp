@@ -6,7 +6,12 @@
 //
 // Usage: ode_contact_order_seeds SCENE CONTENDER SEEDS [ITERATIONS]
 //   SCENE: heavy (100 kg on two 1 kg boxes) | heavy1000 | stack10 | stack20 | pile (time to sleep)
-//   CONTENDER: dbox (ODE's own box colliders) | gdc:ORDER:BUDGET:HYSTERESIS, ORDER one of
+//     | plates20 (bench_solver_seeds' 10 plates of 50×50×2.5 cm, 3 s; failed: a plate sank by more
+//     than half its thickness) | heavycube (the robustness tests' 100 kg cube turned 0.1 rad on a
+//     1 kg cube, 10 s, ERP 0.2, CFM 1e-5, μ 0.8, no start jitter — only dRandSetSeed — as in
+//     tests/robustness/world_test.cpp; drift: the largest horizontal displacement after 2 s, its
+//     mean over the seeds printed too, as that test averages it)
+//   CONTENDER: dbox (ODE's own box colliders; dbox:N passes maxc N, dBoxBox then culls to N) | gdc:ORDER:BUDGET:HYSTERESIS, ORDER one of
 //     last (Settings::ContactOrder::DeepestLast), first (DeepestFirst), or, to measure what an
 //     order by depth is worth, importance-last / importance-first: the core's own array (the order
 //     of importance, gdc::collide) made into joints as it is / reversed, so that the solver meets
@@ -30,18 +35,20 @@
 
 namespace {
 
-enum class Order { Last, First, ImportanceLast, ImportanceFirst };
+enum class Order { Last, First, ImportanceLast, ImportanceFirst, Cyclic };
 
 struct Contender {
     bool ode = false;
+    int odeBudget = 16;  // dCollide's maxc for ODE's own colliders
     Order order = Order::Last;
     gdc::Settings settings;
 };
 
 Contender parseContender(const std::string& text) {
     Contender contender;
-    if (text == "dbox") {
+    if (text == "dbox" || text.rfind("dbox:", 0) == 0) {  // dbox:N asks ODE's colliders for at most N
         contender.ode = true;
+        contender.odeBudget = text == "dbox" ? 16 : std::atoi(text.c_str() + 5);
         return contender;
     }
     char order[32] = {};
@@ -52,13 +59,14 @@ Contender parseContender(const std::string& text) {
         std::exit(2);
     }
     const std::string o = order;
-    if (o != "first" && o != "last" && o != "importance-last" && o != "importance-first") {
+    if (o != "first" && o != "last" && o != "importance-last" && o != "importance-first" && o != "cyclic") {
         std::fprintf(stderr, "bad order %s (first, last, importance-last, importance-first)\n", order);
         std::exit(2);
     }
     contender.order = o == "first"              ? Order::First
                       : o == "importance-last"  ? Order::ImportanceLast
                       : o == "importance-first" ? Order::ImportanceFirst
+                      : o == "cyclic"           ? Order::Cyclic
                                                 : Order::Last;
     contender.settings.maxContacts = budget;
     contender.settings.reductionHysteresis = hysteresis;
@@ -74,6 +82,7 @@ struct World {
     std::vector<dBodyID> bodies;
     const Contender* contender;
     long contactCount = 0;
+    double mu = 0.6;
 };
 
 // The core's contacts for a box–box or box–plane pair in its own order (the order of importance),
@@ -110,14 +119,39 @@ void nearCallback(void* data, dGeomID o1, dGeomID o2) {
     dBodyID b1 = dGeomGetBody(o1), b2 = dGeomGetBody(o2);
     if (b1 && b2 && dAreConnectedExcluding(b1, b2, dJointTypeContact)) return;
     dContactGeom geoms[16];
-    const bool importance =
-        w.contender->order == Order::ImportanceLast || w.contender->order == Order::ImportanceFirst;
-    const int n = importance ? coreContacts(o1, o2, w.contender->settings, geoms) : dCollide(o1, o2, 16, geoms, sizeof(dContactGeom));
+    const bool importance = w.contender->order == Order::ImportanceLast ||
+                            w.contender->order == Order::ImportanceFirst || w.contender->order == Order::Cyclic;
+    const int n = importance ? coreContacts(o1, o2, w.contender->settings, geoms) : dCollide(o1, o2, w.contender->ode ? w.contender->odeBudget : 16, geoms, sizeof(dContactGeom));
     if (w.contender->order == Order::ImportanceFirst) std::reverse(geoms, geoms + n);
+    if (w.contender->order == Order::Cyclic && n > 2) {
+        // Around the polygon from the deepest point (the core's first), by angle about the points'
+        // mean in a basis of the contact plane; made into joints reversed, so that the solver meets
+        // them deepest first and then around.
+        double mean[3] = {0, 0, 0};
+        for (int i = 0; i < n; ++i)
+            for (int k = 0; k < 3; ++k) mean[k] += geoms[i].pos[k] / n;
+        const dReal* nz = geoms[0].normal;
+        double u[3] = {1, 0, 0};
+        if (std::abs(nz[0]) > 0.9) u[0] = 0, u[1] = 1;
+        const double d = u[0] * nz[0] + u[1] * nz[1] + u[2] * nz[2];
+        for (int k = 0; k < 3; ++k) u[k] -= d * nz[k];
+        const double v[3] = {nz[1] * u[2] - nz[2] * u[1], nz[2] * u[0] - nz[0] * u[2], nz[0] * u[1] - nz[1] * u[0]};
+        auto angle = [&](const dContactGeom& g) {
+            double x = 0, y = 0;
+            for (int k = 0; k < 3; ++k) x += (g.pos[k] - mean[k]) * u[k], y += (g.pos[k] - mean[k]) * v[k];
+            return std::atan2(y, x);
+        };
+        const double start = angle(geoms[0]);
+        std::stable_sort(geoms + 1, geoms + n, [&](const dContactGeom& a, const dContactGeom& b) {
+            auto from = [&](const dContactGeom& g) { double t = angle(g) - start; return t < 0 ? t + 6.283185307179586 : t; };
+            return from(a) < from(b);
+        });
+        std::reverse(geoms, geoms + n);
+    }
     for (int i = 0; i < n; ++i) {
         dContact contact{};
         contact.surface.mode = dContactApprox1;
-        contact.surface.mu = 0.6;
+        contact.surface.mu = w.mu;
         contact.geom = geoms[i];
         dJointID joint = dJointCreateContact(w.world, w.contacts, &contact);
         dJointAttach(joint, b1, b2);
@@ -146,6 +180,7 @@ struct Outcome {
     double asleepAt5 = 0;  // pile: bodies disabled at 5 s
     double allAsleep = INFINITY;  // pile: s until every body is disabled
     double contactsPerStep = 0;
+    double drop = 0;  // plates20: the largest sink of a plate below its start (m), over the run
 };
 
 Outcome run(const std::string& scene, const Contender& contender, int seed, int iterations) {
@@ -193,6 +228,25 @@ Outcome run(const std::string& scene, const Contender& contender, int seed, int 
             dBodySetRotation(body, r);
         }
         seconds = 10;
+    } else if (scene == "plates20") {
+        // bench/solver_seeds' plates20 with its jitter ranges (±1 mm, ±0.01 rad yaw, ±0.002 rad tilt).
+        const double half = 0.25, halfThickness = half / 20;
+        for (int i = 0; i < 10; ++i) {
+            const dReal p[3] = {1e-3 * jitter(random), 1e-3 * jitter(random), halfThickness * (1 + 2 * i)};
+            dBodyID body = addBox(w, 2 * half, 2 * half, 2 * halfThickness, 1000 * 8 * half * half * halfThickness, p, 0);
+            dMatrix3 r;
+            dRFromEulerAngles(r, 0.002 * jitter(random), 0.002 * jitter(random), 0.01 * jitter(random));
+            dBodySetRotation(body, r);
+        }
+        seconds = 3;
+    } else if (scene == "heavycube") {
+        dWorldSetERP(w.world, 0.2);
+        dWorldSetCFM(w.world, 1e-5);
+        w.mu = 0.8;
+        const dReal low[3] = {0, 0, 0.5}, high[3] = {0.05, 0.02, 1.4999};
+        addBox(w, 1, 1, 1, 1, low, 0);
+        addBox(w, 1, 1, 1, 100, high, 0.1);
+        seconds = 10;
     } else {
         std::fprintf(stderr, "unknown scene %s\n", scene.c_str());
         std::exit(2);
@@ -202,10 +256,27 @@ Outcome run(const std::string& scene, const Contender& contender, int seed, int 
         start.push_back({q[0], q[1], q[2]});
     }
     const int steps = static_cast<int>(std::lround(seconds / dt));
+    std::vector<std::array<double, 3>> settled;
     for (int step = 0; step < steps; ++step) {
         dSpaceCollide(w.space, &w, &nearCallback);
         dWorldQuickStep(w.world, dt);
         dJointGroupEmpty(w.contacts);
+        if (scene == "heavycube") {  // as the robustness test: the largest drift of a body after 2 s
+            if (step + 1 == 200)
+                for (dBodyID body : w.bodies) {
+                    const dReal* q = dBodyGetPosition(body);
+                    settled.push_back({q[0], q[1], q[2]});
+                }
+            if (step + 1 > 200)
+                for (size_t i = 0; i < w.bodies.size(); ++i) {
+                    const dReal* q = dBodyGetPosition(w.bodies[i]);
+                    outcome.drift = std::max(outcome.drift, std::hypot(q[0] - settled[i][0], q[1] - settled[i][1]));
+                }
+        }
+        if (scene == "plates20") {
+            for (size_t i = 0; i < w.bodies.size(); ++i)
+                outcome.drop = std::max(outcome.drop, start[i][2] - dBodyGetPosition(w.bodies[i])[2]);
+        }
         if (scene == "pile") {
             int asleep = 0;
             for (dBodyID body : w.bodies) asleep += dBodyIsEnabled(body) ? 0 : 1;
@@ -226,6 +297,14 @@ Outcome run(const std::string& scene, const Contender& contender, int seed, int 
         outcome.drift = std::max({horizontal(0), horizontal(1), horizontal(2)});
         // Collapsed: the heavy box sank by more than 10 cm, tilted by more than ~6°, or a light box slid away.
         outcome.failed = top[2] < 1.4 || r[10] < 0.995 || horizontal(0) > 0.25 || horizontal(1) > 0.25;
+    } else if (scene == "heavycube") {
+        outcome.failed = dBodyGetPosition(w.bodies[1])[2] < 1.0;  // the heavy cube fell off
+    } else if (scene == "plates20") {
+        outcome.drift = 0;
+        for (int i = 0; i < n; ++i) outcome.drift = std::max(outcome.drift, horizontal(i));
+        double finalDrop = 0;
+        for (int i = 0; i < n; ++i) finalDrop = std::max(finalDrop, start[i][2] - dBodyGetPosition(w.bodies[i])[2]);
+        outcome.failed = finalDrop > 0.0125;  // the bench's limit: half the plate's thickness, at the end
     } else if (scene == "pile") {
         outcome.drift = 0;
     } else {
@@ -261,11 +340,14 @@ int main(int argc, char** argv) {
     const int seeds = std::atoi(argv[3]);
     const int iterations = argc > 4 ? std::atoi(argv[4]) : 20;
     int failed = 0;
-    std::vector<double> drifts, asleep, allAsleep;
+    std::vector<double> drifts, asleep, allAsleep, drops;
+    std::vector<int> failedSeeds;
     double contacts = 0;
     for (int seed = 1; seed <= seeds; ++seed) {
         const Outcome o = run(scene, contender, seed, iterations);
         failed += o.failed ? 1 : 0;
+        if (o.failed) failedSeeds.push_back(seed);
+        drops.push_back(o.drop);
         drifts.push_back(o.drift);
         asleep.push_back(o.asleepAt5);
         allAsleep.push_back(o.allAsleep);
@@ -279,6 +361,18 @@ int main(int argc, char** argv) {
                     [&] { double s = 0; for (double a : asleep) s += a; return s / seeds; }(),
                     percentile(allAsleep, 0.5),
                     static_cast<int>(std::count_if(allAsleep.begin(), allAsleep.end(), [](double t) { return !std::isfinite(t); })));
+    if (scene == "heavycube") {
+        double mean = 0, square = 0;
+        for (double d : drifts) mean += d / seeds;
+        for (double d : drifts) square += (d - mean) * (d - mean);
+        // The standard error of the mean: the sample's standard deviation over √seeds.
+        std::printf("  drift mean %.4f (standard error %.4f)", mean, seeds > 1 ? std::sqrt(square / (seeds - 1) / seeds) : 0.0);
+    }
+    if (scene == "plates20") std::printf("  largest sink p50 %.4f p90 %.4f m", percentile(drops, 0.5), percentile(drops, 0.9));
+    if (!failedSeeds.empty()) {
+        std::printf("  failed seeds");
+        for (int s : failedSeeds) std::printf(" %d", s);
+    }
     std::printf("\n");
     return 0;
 }
