@@ -68,6 +68,15 @@ bool preferNearbyFaceNormal(const MinkowskiDifference& pair, const Feature& feat
     const double current = normalOverlap;
     if (!(current > tolerance)) return false;  // touching or apart along n: n already separates them
     const double limit = kClearlySmallerOverlap * current;
+    // A face's cap or an edge's chain (`pieces`, more than one) is one feature of several pieces,
+    // and rounding selects one piece in A's frame and maybe another in B's: the faces around the
+    // selected piece made collide(A, B) and collide(B, A) see different candidates (issue 21: a
+    // needle's ragged end of two faces 0.005 rad apart, 0.035·s against 0.015·s). The candidates are
+    // those around the piece of lowest index, the same in both frames. (The faces around every
+    // piece would do too, but cost 8 % more per query on hulls of 4096 vertices, whose caps are
+    // large, to enumerate candidates that the bound below then skips.)
+    const Feature representativeA = piecesA.size() > 1 ? Feature{featureA.type, *std::min_element(piecesA.data(), piecesA.data() + piecesA.size())} : featureA;
+    const Feature representativeB = piecesB.size() > 1 ? Feature{featureB.type, *std::min_element(piecesB.data(), piecesB.data() + piecesB.size())} : featureB;
     // The features' own vertices (A's frame) bound every candidate's overlap from below: along c
     // the pair overlaps by at least max c·(A's feature) − min c·(B's feature), since those points
     // belong to A and B. Where that bound already reaches the limit, the two support searches of
@@ -78,8 +87,8 @@ bool preferNearbyFaceNormal(const MinkowskiDifference& pair, const Feature& feat
     int storageA[2], storageB[2];
     const int* indicesA = nullptr;
     const int* indicesB = nullptr;
-    const int countA = featureVertices(pair.a, featureA, &indicesA, storageA);
-    const int countB = featureVertices(pair.b, featureB, &indicesB, storageB);
+    const int countA = featureVertices(pair.a, representativeA, &indicesA, storageA);
+    const int countB = featureVertices(pair.b, representativeB, &indicesB, storageB);
     SmallVector<Vec3, 16> pointsB;  // B's feature in A's frame
     for (int i = 0; i < countB; ++i) pointsB.push_back(pair.bInA.apply(pair.b.vertices()[indicesB[i]]));
     const std::vector<Vec3>& verticesA = pair.a.vertices();
@@ -101,33 +110,14 @@ bool preferNearbyFaceNormal(const MinkowskiDifference& pair, const Feature& feat
             found = true, bestOverlap = overlap, bestCos = cosine, best = candidate;
     };
     // The faces around the feature's vertices, each once, in the order the vertices and their face
-    // lists meet them; a face feature has them precomputed (Polytope::faceNeighbourhoods). A face's
-    // cap or an edge's chain (`pieces`, more than one) is the feature: the faces around all of it,
-    // whichever of its pieces was selected — rounding picks one in A's frame and maybe another in
-    // B's, and the faces around one piece only made collide(A, B) and collide(B, A) see different
-    // candidates (issue 21: a needle's ragged end of two faces 0.005 rad apart, 0.035·s against 0.015·s).
-    auto facesAround = [&](const Polytope& polytope, const Feature& feature, const SmallVector<int, 8>& pieces,
-                           const int* indices, int count, auto&& visit) {
-        if (feature.type == FeatureType::Face && pieces.size() <= 1) {
+    // lists meet them; a face feature has them precomputed (Polytope::faceNeighbourhoods).
+    auto facesAround = [&](const Polytope& polytope, const Feature& feature, const int* indices, int count,
+                           auto&& visit) {
+        if (feature.type == FeatureType::Face) {
             const int* offsets = polytope.faceNeighbourhoodOffsets().data();
             const int* faces = polytope.faceNeighbourhoods().data();
             for (int k = offsets[feature.index], end = offsets[feature.index + 1]; k < end; ++k) visit(faces[k]);
             return;
-        }
-        SmallVector<int, 32> chainVertices;  // the vertices of a cap or chain, each once
-        if (pieces.size() > 1) {
-            if (feature.type == FeatureType::Face) {
-                capVertices(polytope, pieces, chainVertices);
-            } else {
-                for (int edge : pieces)
-                    for (int vertex : {polytope.edges()[edge].tail, polytope.edges()[edge].head}) {
-                        bool seen = false;
-                        for (int v : chainVertices) seen |= v == vertex;
-                        if (!seen) chainVertices.push_back(vertex);
-                    }
-            }
-            indices = chainVertices.data();
-            count = static_cast<int>(chainVertices.size());
         }
         const int* offsets = polytope.vertexFaceOffsets().data();
         const int* faces = polytope.vertexFaces().data();
@@ -139,8 +129,8 @@ bool preferNearbyFaceNormal(const MinkowskiDifference& pair, const Feature& feat
                 if (!seen) visit(faces[k]);
             }
     };
-    facesAround(pair.a, featureA, piecesA, indicesA, countA, [&](int face) { consider(pair.a.faces()[face].normal); });
-    facesAround(pair.b, featureB, piecesB, indicesB, countB,
+    facesAround(pair.a, representativeA, indicesA, countA, [&](int face) { consider(pair.a.faces()[face].normal); });
+    facesAround(pair.b, representativeB, indicesB, countB,
                 [&](int face) { consider(-(pair.bInA.rotation * pair.b.faces()[face].normal)); });
     if (!found) return false;
     normal = best;
