@@ -75,8 +75,12 @@ bool preferNearbyFaceNormal(const MinkowskiDifference& pair, const Feature& feat
     // those around the piece of lowest index, the same in both frames. (The faces around every
     // piece would do too, but cost 8 % more per query on hulls of 4096 vertices, whose caps are
     // large, to enumerate candidates that the bound below then skips.)
-    const Feature representativeA = piecesA.size() > 1 ? Feature{featureA.type, *std::min_element(piecesA.data(), piecesA.data() + piecesA.size())} : featureA;
-    const Feature representativeB = piecesB.size() > 1 ? Feature{featureB.type, *std::min_element(piecesB.data(), piecesB.data() + piecesB.size())} : featureB;
+    auto representative = [](const Feature& feature, const SmallVector<int, 8>& pieces) {
+        if (pieces.size() <= 1) return feature;
+        return Feature{feature.type, *std::min_element(pieces.data(), pieces.data() + pieces.size())};
+    };
+    const Feature representativeA = representative(featureA, piecesA);
+    const Feature representativeB = representative(featureB, piecesB);
     // The features' own vertices (A's frame) bound every candidate's overlap from below: along c
     // the pair overlaps by at least max c·(A's feature) − min c·(B's feature), since those points
     // belong to A and B. Where that bound already reaches the limit, the two support searches of
