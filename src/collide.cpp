@@ -62,11 +62,25 @@ double overlapAlong(const MinkowskiDifference& pair, const Vec3& direction, cons
 // Candidates within rounding of the same overlap go to the one closest to the growth-distance
 // normal, so collide(A, B) and collide(B, A) choose alike. Returns true when `normal` changed.
 // `normalOverlap` is the pair's overlap along `normal`; both are updated together.
-bool preferNearbyFaceNormal(const MinkowskiDifference& pair, const Feature& featureA, const Feature& featureB,
-                            double tolerance, Vec3& normal, double& normalOverlap) {
+bool preferNearbyFaceNormal(const MinkowskiDifference& pair, const Feature& featureA, const SmallVector<int, 8>& piecesA,
+                            const Feature& featureB, const SmallVector<int, 8>& piecesB, double tolerance, Vec3& normal,
+                            double& normalOverlap) {
     const double current = normalOverlap;
     if (!(current > tolerance)) return false;  // touching or apart along n: n already separates them
     const double limit = kClearlySmallerOverlap * current;
+    // A face's cap or an edge's chain (`pieces`, more than one) is one feature of several pieces,
+    // and rounding selects one piece in A's frame and maybe another in B's: the faces around the
+    // selected piece made collide(A, B) and collide(B, A) see different candidates (issue 21: a
+    // needle's ragged end of two faces 0.005 rad apart, 0.035·s against 0.015·s). The candidates are
+    // those around the piece of lowest index, the same in both frames. (The faces around every
+    // piece would do too, but cost 8 % more per query on hulls of 4096 vertices, whose caps are
+    // large, to enumerate candidates that the bound below then skips.)
+    auto representative = [](const Feature& feature, const SmallVector<int, 8>& pieces) {
+        if (pieces.size() <= 1) return feature;
+        return Feature{feature.type, *std::min_element(pieces.data(), pieces.data() + pieces.size())};
+    };
+    const Feature representativeA = representative(featureA, piecesA);
+    const Feature representativeB = representative(featureB, piecesB);
     // The features' own vertices (A's frame) bound every candidate's overlap from below: along c
     // the pair overlaps by at least max c·(A's feature) − min c·(B's feature), since those points
     // belong to A and B. Where that bound already reaches the limit, the two support searches of
@@ -77,8 +91,8 @@ bool preferNearbyFaceNormal(const MinkowskiDifference& pair, const Feature& feat
     int storageA[2], storageB[2];
     const int* indicesA = nullptr;
     const int* indicesB = nullptr;
-    const int countA = featureVertices(pair.a, featureA, &indicesA, storageA);
-    const int countB = featureVertices(pair.b, featureB, &indicesB, storageB);
+    const int countA = featureVertices(pair.a, representativeA, &indicesA, storageA);
+    const int countB = featureVertices(pair.b, representativeB, &indicesB, storageB);
     SmallVector<Vec3, 16> pointsB;  // B's feature in A's frame
     for (int i = 0; i < countB; ++i) pointsB.push_back(pair.bInA.apply(pair.b.vertices()[indicesB[i]]));
     const std::vector<Vec3>& verticesA = pair.a.vertices();
@@ -119,8 +133,8 @@ bool preferNearbyFaceNormal(const MinkowskiDifference& pair, const Feature& feat
                 if (!seen) visit(faces[k]);
             }
     };
-    facesAround(pair.a, featureA, indicesA, countA, [&](int face) { consider(pair.a.faces()[face].normal); });
-    facesAround(pair.b, featureB, indicesB, countB,
+    facesAround(pair.a, representativeA, indicesA, countA, [&](int face) { consider(pair.a.faces()[face].normal); });
+    facesAround(pair.b, representativeB, indicesB, countB,
                 [&](int face) { consider(-(pair.bInA.rotation * pair.b.faces()[face].normal)); });
     if (!found) return false;
     normal = best;
@@ -139,26 +153,48 @@ FeatureGeometry faceGeometry(const Polytope& polytope, int index, const Pose& to
     return geometry;
 }
 
-// `direction` is the contact normal in the polytope's own frame, pointing away from the body
-// (n for A, −n for B): the cap of a face feature is taken around it.
-FeatureGeometry featureGeometry(const Polytope& polytope, const Feature& feature, const Pose& toCommon,
-                                const Vec3& direction, const AngularTolerance& angularTolerance) {
+FeatureGeometry edgeGeometry(const Polytope& polytope, int index, const Pose& toCommon) {
+    FeatureGeometry geometry;
+    geometry.type = FeatureType::Edge;
+    const Polytope::Edge& edge = polytope.edges()[index];
+    geometry.points.push_back(toCommon.apply(polytope.vertices()[edge.tail]));
+    geometry.points.push_back(toCommon.apply(polytope.vertices()[edge.head]));
+    return geometry;
+}
+
+// The pieces of a selected feature: the faces of a face's cap or the edges of an edge's chain
+// (gauss_map.hpp), the selected one among them; nothing for a vertex. `direction` is the contact
+// normal in the polytope's own frame, pointing away from the body (n for A, −n for B).
+void featurePieces(const Polytope& polytope, const Feature& feature, const Vec3& direction,
+                   const AngularTolerance& angularTolerance, SmallVector<int, 8>& pieces) {
+    pieces.clear();
+    if (feature.type == FeatureType::Face) faceCap(polytope, feature.index, direction, angularTolerance, pieces);
+    else if (feature.type == FeatureType::Edge) edgeChain(polytope, feature.index, direction, angularTolerance, pieces);
+}
+
+// The feature in the common frame; with more than one piece (featurePieces) each is a feature of
+// its own in `capFaces`, intersected one by one.
+FeatureGeometry featureGeometry(const Polytope& polytope, const Feature& feature, const SmallVector<int, 8>& pieces,
+                                const Pose& toCommon) {
     if (feature.type == FeatureType::Face) {
         FeatureGeometry geometry = faceGeometry(polytope, feature.index, toCommon);
-        SmallVector<int, 8> cap;
-        faceCap(polytope, feature.index, direction, angularTolerance, cap);
-        if (cap.size() > 1) {
-            geometry.capFaces.reserve(cap.size());
-            for (int face : cap) geometry.capFaces.push_back(faceGeometry(polytope, face, toCommon));
+        if (pieces.size() > 1) {
+            geometry.capFaces.reserve(pieces.size());
+            for (int face : pieces) geometry.capFaces.push_back(faceGeometry(polytope, face, toCommon));
+        }
+        return geometry;
+    }
+    if (feature.type == FeatureType::Edge) {
+        FeatureGeometry geometry = edgeGeometry(polytope, feature.index, toCommon);
+        if (pieces.size() > 1) {
+            geometry.capFaces.reserve(pieces.size());
+            for (int edge : pieces) geometry.capFaces.push_back(edgeGeometry(polytope, edge, toCommon));
         }
         return geometry;
     }
     FeatureGeometry geometry;
     geometry.type = feature.type;
-    int storage[2];
-    const int* indices = nullptr;
-    int count = featureVertices(polytope, feature, &indices, storage);
-    for (int i = 0; i < count; ++i) geometry.points.push_back(toCommon.apply(polytope.vertices()[indices[i]]));
+    geometry.points.push_back(toCommon.apply(polytope.vertices()[feature.index]));
     return geometry;
 }
 
@@ -195,8 +231,33 @@ void refineNormal(Vec3& normal, double& normalOverlap, const FeatureGeometry& a,
         normal = best, normalOverlap = bestOverlap;
         return;
     }
-    if (a.type == FeatureType::Edge && b.type == FeatureType::Edge)
+    if (a.type != FeatureType::Edge || b.type != FeatureType::Edge) return;
+    if (a.capFaces.empty() && b.capFaces.empty()) {
         edgeEdgeNormal(a.points[0], a.points[1], b.points[0], b.points[1], pair, normal, normalOverlap);
+        return;
+    }
+    // Edge chains: each pair of their edges has its common perpendicular; the contact normal is the
+    // one along which the pair overlaps least (as among a cap's faces above), so it depends on the
+    // chains only, not on which of their nearly collinear edges rounding selected.
+    auto piecesOf = [](const FeatureGeometry& feature) {
+        SmallVector<const FeatureGeometry*, 16> pieces;
+        if (feature.capFaces.empty()) pieces.push_back(&feature);
+        for (const FeatureGeometry& piece : feature.capFaces) pieces.push_back(&piece);
+        return pieces;
+    };
+    const auto piecesA = piecesOf(a), piecesB = piecesOf(b);
+    for (const FeatureGeometry* edgeA : piecesA)
+        for (const FeatureGeometry* edgeB : piecesB) {
+            Vec3 candidate = normal;
+            double overlap = normalOverlap;
+            if (!edgeEdgeNormal(edgeA->points[0], edgeA->points[1], edgeB->points[0], edgeB->points[1], pair, candidate,
+                                overlap))
+                continue;  // parallel edges
+            const double cosine = candidate.dot(normal);
+            if (overlap < bestOverlap || (overlap == bestOverlap && cosine > bestCos))
+                bestOverlap = overlap, bestCos = cosine, best = candidate;
+        }
+    if (bestCos > -2) normal = best, normalOverlap = bestOverlap;
 }
 
 // Whether the deepest lifted point provably carries the whole penetration along n, so the ray cast
@@ -277,14 +338,15 @@ bool separatedByEarlyOut(const MinkowskiDifference& pair, const Vec3& centreOffs
     return centreDistance > 0 && pair.overlapAlong(centreOffset / centreDistance) < -margin - tolerance;
 }
 
-void edgeEdgeNormal(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, const MinkowskiDifference& pair,
+bool edgeEdgeNormal(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, const MinkowskiDifference& pair,
                     Vec3& normal, double& normalOverlap) {
     Vec3 perpendicular = (a1 - a0).cross(b1 - b0);
     const double scale = (a1 - a0).norm() * (b1 - b0).norm();
-    if (!(perpendicular.norm() > 1e-6 * scale)) return;  // parallel edges: no single perpendicular
+    if (!(perpendicular.norm() > 1e-6 * scale)) return false;  // parallel edges: no single perpendicular
     perpendicular.normalize();
     normal = perpendicular.dot(normal) < 0 ? -perpendicular : perpendicular;
     normalOverlap = pair.overlapAlong(normal);
+    return true;
 }
 
 void emitManifold(const LiftedPoints& points, const Vec3& normal, const Pose& commonToWorld, const Settings& settings,
@@ -351,10 +413,14 @@ Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b,
 
     // Stage 2: one Gauss-map feature per body (B's searched in its own frame with −n).
     const AngularTolerance angularTolerance(settings.angularTolerance);
+    // With each feature its pieces: a face's cap, an edge's chain.
+    SmallVector<int, 8> piecesA, piecesB;
     auto selectFeatures = [&](const Vec3& n) {
         const Vec3 directionB = bInA.rotation.transpose() * -n;
         manifold.featureA = selectFeature(a, n, pair.supportA(n), angularTolerance);
         manifold.featureB = selectFeature(b, directionB, pair.supportBInB(directionB), angularTolerance);
+        featurePieces(a, manifold.featureA, n, angularTolerance, piecesA);
+        featurePieces(b, manifold.featureB, directionB, angularTolerance, piecesB);
     };
     selectFeatures(normal);
     // Stage 1's check of the growth-distance normal against the faces around the two features
@@ -364,13 +430,12 @@ Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b,
     // no face overlaps less.
     const bool noFaceClearlySmaller = growth.faceOverlapLowerBound >= kClearlySmallerOverlap * normalOverlap + tolerance;
     if (growth.valid && !noFaceClearlySmaller &&
-        preferNearbyFaceNormal(pair, manifold.featureA, manifold.featureB, tolerance, normal, normalOverlap)) {
+        preferNearbyFaceNormal(pair, manifold.featureA, piecesA, manifold.featureB, piecesB, tolerance, normal, normalOverlap)) {
         if (normalOverlap < -settings.margin - tolerance) return Manifold{};  // a separating face
         selectFeatures(normal);
     }
-    const FeatureGeometry featureA = featureGeometry(a, manifold.featureA, Pose{}, normal, angularTolerance);
-    const FeatureGeometry featureB = featureGeometry(b, manifold.featureB, bInA, bInA.rotation.transpose() * -normal,
-                                                     angularTolerance);
+    const FeatureGeometry featureA = featureGeometry(a, manifold.featureA, piecesA, Pose{});
+    const FeatureGeometry featureB = featureGeometry(b, manifold.featureB, piecesB, bInA);
     if (!separatingAxis) refineNormal(normal, normalOverlap, featureA, featureB, pair);  // SAT's is exact already
 
     // Stage 3: intersection in the contact plane, each point with its own depth.

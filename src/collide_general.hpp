@@ -31,8 +31,9 @@ bool separatedByEarlyOut(const MinkowskiDifference& pair, const Vec3& centreOffs
                          double margin, double tolerance);
 
 /// An edge–edge contact's normal: the edges' common perpendicular, turned to agree with `normal`,
-/// replaces it (and `normalOverlap` with the pair's overlap along it), unless the edges are parallel.
-void edgeEdgeNormal(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, const MinkowskiDifference& pair,
+/// replaces it (and `normalOverlap` with the pair's overlap along it), unless the edges are parallel
+/// (then it returns false and changes nothing).
+bool edgeEdgeNormal(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, const MinkowskiDifference& pair,
                     Vec3& normal, double& normalOverlap);
 
 /// Writes the lifted points (A's frame) to the manifold in world coordinates, ranked by importance

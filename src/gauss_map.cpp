@@ -1,5 +1,6 @@
 #include "gauss_map.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace gdc::detail {
@@ -94,6 +95,62 @@ void faceCap(const Polytope& polytope, int face, const Vec3& direction, const An
             }
         }
     }
+}
+
+namespace {
+
+// Whether `direction` is within the tolerance of the edge's arc: nearly perpendicular to the edge
+// and, projected onto the arc's great circle, between its two face normals (selectFeature's test).
+bool withinArc(const Polytope& polytope, const Polytope::Edge& edge, const Vec3& direction,
+               const AngularTolerance& tolerance) {
+    const Vec3 along = (polytope.vertices()[edge.head] - polytope.vertices()[edge.tail]).normalized();
+    if (std::abs(along.dot(direction)) > tolerance.sine) return false;
+    const Vec3 projected = direction - along.dot(direction) * along;
+    const Vec3& left = polytope.faces()[edge.leftFace].normal;
+    const Vec3& right = polytope.faces()[edge.rightFace].normal;
+    const Vec3 arcAxis = left.cross(right);
+    return left.cross(projected).dot(arcAxis) >= 0 && projected.cross(right).dot(arcAxis) >= 0;
+}
+
+}  // namespace
+
+void edgeChain(const Polytope& polytope, int edge, const Vec3& direction, const AngularTolerance& tolerance,
+               SmallVector<int, 8>& edges) {
+    edges.clear();
+    edges.push_back(edge);
+    // No neighbour continues the edge within the tolerance: the chain is the edge alone, found
+    // without the walk (every edge of a box, most edges of a coarse hull).
+    const Polytope::Edge& selected = polytope.edges()[edge];
+    if (!(selected.straightestNeighbourCosine >= tolerance.cosine)) return;
+    const std::vector<Vec3>& vertices = polytope.vertices();
+    const Vec3 along = (vertices[selected.head] - vertices[selected.tail]).normalized();
+    const int* offsets = polytope.vertexFaceOffsets().data();
+    const int* vertexEdges = polytope.vertexEdges().data();
+    // Walk from each end outwards, each step to the straightest continuation that qualifies (ties:
+    // the lowest index), so the chain is the same whichever of its edges was selected.
+    for (const auto& [start, sign] : {std::pair{selected.head, 1.0}, std::pair{selected.tail, -1.0}}) {
+        int vertex = start;
+        while (static_cast<int>(edges.size()) < kMaxChainEdges) {
+            int next = -1, far = -1;
+            double bestCosine = tolerance.cosine;
+            for (int k = offsets[vertex], end = offsets[vertex + 1]; k < end; ++k) {
+                const int candidate = vertexEdges[k];
+                bool known = false;
+                for (int e : edges) known |= e == candidate;
+                if (known) continue;
+                const Polytope::Edge& other = polytope.edges()[candidate];
+                const int otherEnd = other.tail == vertex ? other.head : other.tail;
+                const double cosine = sign * (vertices[otherEnd] - vertices[vertex]).normalized().dot(along);
+                if (cosine < bestCosine || (cosine == bestCosine && next >= 0 && candidate > next)) continue;
+                if (!withinArc(polytope, other, direction, tolerance)) continue;
+                bestCosine = cosine, next = candidate, far = otherEnd;
+            }
+            if (next < 0) break;
+            edges.push_back(next);
+            vertex = far;
+        }
+    }
+    std::sort(edges.data(), edges.data() + edges.size());
 }
 
 void capVertices(const Polytope& polytope, const SmallVector<int, 8>& cap, SmallVector<int, 32>& vertices) {

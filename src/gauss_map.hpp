@@ -55,6 +55,18 @@ constexpr int kMaxCapFaces = 64;
 void faceCap(const Polytope& polytope, int face, const Vec3& direction, const AngularTolerance& tolerance,
              SmallVector<int, 8>& faces);
 
+/// Most edges one chain may hold (edgeChain).
+constexpr int kMaxChainEdges = 16;
+
+/// The chain of a selected edge: that edge and every edge continuing it end to end, nearly
+/// straight (its direction within the angular tolerance of the selected edge's) and with its arc
+/// also within the tolerance of `direction` — the nearly collinear edges (a side bent by 1e-6 rad,
+/// a finely tessellated rim) that together make up the edge the body touches with, as a face's cap
+/// makes up its flat region. Without it rounding picks one of them, in A's frame one and in B's
+/// the other (issue 21). Writes edge indices in increasing order; at most kMaxChainEdges.
+void edgeChain(const Polytope& polytope, int edge, const Vec3& direction, const AngularTolerance& tolerance,
+               SmallVector<int, 8>& edges);
+
 /// The vertices of a face's cap (faceCap), each once, appended in the order the cap's loops meet
 /// them, in the polytope's frame.
 void capVertices(const Polytope& polytope, const SmallVector<int, 8>& cap, SmallVector<int, 32>& vertices);

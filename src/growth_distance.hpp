@@ -47,6 +47,18 @@ struct RayCastResult {
     int iterations = 0;
 };
 
+/// Whether the plane of the triangle `simplex[0..2]` (oriented along `side`) supports the convex
+/// set of `support` within `tolerance`: one support query along its normal.
+template <class Support>
+bool supportsAsFacet(const Support& support, const std::array<SupportPoint, 4>& simplex, const Vec3& side,
+                     double tolerance) {
+    Vec3 facet = (simplex[1].point - simplex[0].point).cross(simplex[2].point - simplex[0].point);
+    if (facet.dot(side) < 0) facet = -facet;
+    if (!(facet.squaredNorm() > 0) || !facet.allFinite()) return false;
+    facet.normalize();
+    return facet.dot(support(facet).point) <= facet.dot(simplex[0].point) + tolerance;
+}
+
 /// GJK ray cast against a convex set given by its support function `support(direction)` →
 /// SupportPoint. Stores the support points themselves (not x − p), so that moving the ray's
 /// current point x never leaves a stale simplex. `tolerance` is a length.
@@ -60,6 +72,7 @@ RayCastResult gjkRayCast(const Support& support, const Vec3& origin, const Vec3&
     std::array<SupportPoint, 4> simplex{};
     int count = 0;
     const double toleranceSquared = tolerance * tolerance;
+    bool restarted = false;
     while (v.squaredNorm() > toleranceSquared && result.iterations < maxIterations) {
         ++result.iterations;
         SupportPoint p = support(v);
@@ -75,7 +88,28 @@ RayCastResult gjkRayCast(const Support& support, const Vec3& origin, const Vec3&
         bool duplicate = false;
         for (int i = 0; i < count; ++i)
             duplicate |= simplex[i].vertexA == p.vertexA && simplex[i].vertexB == p.vertexB;
-        if (duplicate && vw <= 0) break;  // no new support point and no progress: converged
+        if (duplicate && vw <= 0) {
+            // No new support point and no progress: converged — or stalled with v still longer
+            // than the tolerance. A stall on a triangle that is a supporting facet of C is settled
+            // after the loop (the facet's plane). On a triangle that cuts through C the closest
+            // point of the simplex is off by rounding (a thin triangle: the facets that a corner cut
+            // by 1e-7 of the size makes of C), x lies inside C's support plane along v while the
+            // simplex puts it 14 tolerances outside, and v is no normal of C at the hit: in one
+            // frame the cast stalled there, in the other it converged, and the two orders of a
+            // pair had normals 0.17 rad apart (issue 21, oracle seed 50005065). Then, once, the
+            // cast starts again from the support point alone: a simplex built afresh from x
+            // converges where the old one could not.
+            if (!restarted && count == 3 && v.squaredNorm() > toleranceSquared &&
+                !supportsAsFacet(support, simplex, v, tolerance)) {
+                restarted = true;
+                simplex[0] = p;
+                count = 1;
+                result.weights = {1, 0, 0, 0};
+                v = x - p.point;
+                continue;
+            }
+            break;
+        }
         std::array<Vec3, 4> relative;
         if (!duplicate) simplex[count++] = p;
         for (int i = 0; i < count; ++i) relative[i] = x - simplex[i].point;

@@ -327,6 +327,20 @@ void Polytope::buildTopology(double size) {
             }
         }
     }
+    for (Edge& edge : edges_) {
+        const Vec3 along = (vertices_[edge.head] - vertices_[edge.tail]).normalized();
+        edge.straightestNeighbourCosine = -1;
+        // Away from the tail, through the head: an edge continuing it runs head → other end; one
+        // continuing it backwards runs other end → tail.
+        for (const auto& [end, sign] : {std::pair{edge.head, 1.0}, std::pair{edge.tail, -1.0}})
+            for (int k = vertexFaceOffsets_[end]; k < vertexFaceOffsets_[end + 1]; ++k) {
+                const Edge& other = edges_[vertexEdges_[k]];
+                if (&other == &edge) continue;
+                const int far = other.tail == end ? other.head : other.tail;
+                const double cosine = sign * (vertices_[far] - vertices_[end]).normalized().dot(along);
+                edge.straightestNeighbourCosine = std::max(edge.straightestNeighbourCosine, cosine);
+            }
+    }
     radius_ = 0;
     for (const Vec3& v : vertices_) radius_ = std::max(radius_, (v - centroid_).norm());
 

@@ -31,6 +31,10 @@ public:
         int head;
         int leftFace;
         int rightFace;
+        /// The largest cosine between this edge's direction and that of an edge continuing it at
+        /// either end (the next edge's direction taken away from the shared vertex): how nearly
+        /// collinear its straightest neighbour is (bounds edge chains, as the face's bounds caps).
+        double straightestNeighbourCosine = -1;
     };
 
     /// Convex hull of a point cloud (qhull). Throws InvalidInput for fewer than 4 points, NaN/Inf

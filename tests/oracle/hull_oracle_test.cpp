@@ -485,3 +485,28 @@ TEST_CASE("oracle: edge to edge between faces nearly parallel to the contact pla
     CHECK(runOracle(40051497, 1, -1, -1, -1).violations == 0);
     CHECK(runOracle(seedOr(21500000), pairsOr(1500), -1, -1, static_cast<int>(PoseFamily::EdgeEdge)).violations == 0);
 }
+
+// Issue 21, the swap asymmetries a 1.2·10^6 sweep found (seed 40000000 on): collide(B, A) not the
+// mirror of collide(A, B) where rounding in one frame picked another piece of a feature than in the
+// other. 40023674 (a bent side against a sphere hull, deep): the growth-distance normals 1e-5 rad
+// apart in the two frames (the cast ends on the thin facets of two edges 4.4e-5 rad from collinear),
+// each order selected another of the two edges, and their common perpendiculars with B's edge,
+// 2.7e-5 rad apart, need translations 2.8e-6·s apart. 40092705 (a needle's face on a bent side,
+// edge to edge): two edges 1.7e-4 rad from collinear, one order's points on the edge that misses
+// the deepest point (0.34 % short, within the depth confirmation's 1 %; the other order exact). Both
+// needed the edge's chain (gauss_map.hpp, edgeChain). 40067857 (needle on needle, edge to edge): a
+// needle's ragged end of two faces 0.005 rad apart, one cap; each order selected another face of
+// it, and the overhang check looked only at the faces around the selected one: one order found a
+// side face needing 0.015·s, the other kept the growth-distance normal needing 0.035·s. It now looks
+// around the whole cap (collide.cpp, preferNearbyFaceNormal).
+TEST_CASE("oracle: swapped queries agree where a feature's pieces are 1e-6..1e-4 rad apart or a cast stalls", "[oracle]") {
+    CHECK(runOracle(40023674, 1, -1, -1, -1).violations == 0);
+    CHECK(runOracle(40092705, 1, -1, -1, -1).violations == 0);
+    CHECK(runOracle(40067857, 1, -1, -1, -1).violations == 0);
+    // Found by the next sweep (seed 50000000 on): a tetrahedron with a corner cut by a tiny face
+    // against a wedge, vertex on face. The growth-distance cast stalled in A's frame 14 tolerances
+    // short on a thin triangle cutting through C and kept its v, a normal 0.17 rad from the facet
+    // normal the cast in B's frame converged to (the translations 5.2e-5·s and 5.7e-5·s apart). A
+    // stall off any supporting facet now restarts the cast once (growth_distance.hpp).
+    CHECK(runOracle(50005065, 1, -1, -1, -1).violations == 0);
+}
