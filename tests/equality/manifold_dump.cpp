@@ -1,0 +1,348 @@
+// Proof that a restructuring of the pipeline changed no answer: every manifold collide() returns on
+// a fixed stream of random poses of every pair type, written to a file by one build and compared
+// with another build's file.
+//
+//   manifold_dump dump FILE             (run by the build before the change and by the build after)
+//   manifold_dump compare BEFORE AFTER  (largest difference in normal, depth and points per pair type)
+//
+// The poses come from std::mt19937 with fixed seeds, so two builds with the same compiler and
+// standard library make the same stream. Pair types: box–box of seven kinds (resting face, face
+// near the angular tolerance, edge–edge, vertex–face, deep, nearly touching, separated/random),
+// box–plane, hull–plane (small hulls and one above the vertex loop's limit), hull–hull (small hulls,
+// a tessellated sphere whose faces come with caps, an elongated prism) and box–hull. Settings vary
+// per pose (margin, contact budget, spanning the region, angular tolerance). compare exits 1 when a
+// count or a feature differs, or when a value differs by more than 1e-9 of the pair's size.
+#include <gdcontact/collide.hpp>
+
+#include "geometry_oracles.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace gdc;
+
+namespace {
+
+Mat3 randomRotation(std::mt19937& random) {
+    std::normal_distribution<double> normal;
+    Eigen::Quaterniond q(normal(random), normal(random), normal(random), normal(random));
+    return q.normalized().toRotationMatrix();
+}
+
+Mat3 tilt(std::mt19937& random, double limit) {
+    std::normal_distribution<double> normal;
+    std::uniform_real_distribution<double> angle(-limit, limit);
+    return testing::rotationAbout(Vec3(normal(random), normal(random), normal(random)).normalized(), angle(random));
+}
+
+Vec3 randomHalfExtents(std::mt19937& random) {
+    std::uniform_real_distribution<double> unit(0, 1), extent(0.05, 2.0);
+    const double kind = unit(random);
+    Vec3 half(extent(random), extent(random), extent(random));
+    if (kind < 0.2) half.setConstant(half.x());
+    else if (kind < 0.35) half[static_cast<int>(unit(random) * 3) % 3] = 0.002 + 0.01 * unit(random);
+    else if (kind < 0.45) half *= 10;
+    else if (kind < 0.55) half *= 0.05;
+    return half;
+}
+
+Settings randomSettings(std::mt19937& random, double size) {
+    std::uniform_real_distribution<double> unit(0, 1);
+    Settings settings;
+    settings.maxContacts = 1 + static_cast<int>(unit(random) * 8) % 8;
+    settings.margin = unit(random) < 0.5 ? 0.0 : unit(random) * 0.02 * size;
+    settings.spanContactRegion = unit(random) < 0.5;
+    if (unit(random) < 0.2) settings.angularTolerance = unit(random) * 0.8;  // beyond 0.7: the general path
+    return settings;
+}
+
+// B's pose against A (A's frame) with A's and B's support extents `reachA`, `reachB` along z.
+enum Kind { RestingFace, FaceNearTolerance, EdgeEdge, VertexFace, Deep, NearlyTouching, Separated, KindCount };
+const char* kKindNames[KindCount] = {"resting-face", "face-near-tolerance", "edge-edge", "vertex-face",
+                                     "deep",         "nearly-touching",     "separated"};
+
+Pose boxPose(Kind kind, const Vec3& halfA, const Vec3& halfB, double angularTolerance, std::mt19937& random) {
+    std::uniform_real_distribution<double> unit(0, 1), symmetric(-1, 1);
+    const double size = halfA.norm() + halfB.norm();
+    auto restOnTop = [&](const Mat3& rotation, double sink) {
+        const double lowest = (rotation.transpose() * Vec3::UnitZ()).cwiseAbs().dot(halfB);
+        const Vec3 over(symmetric(random) * halfA.x(), symmetric(random) * halfA.y(), 0);
+        return Pose{rotation, over + Vec3(0, 0, halfA.z() + lowest - sink)};
+    };
+    auto touching = [&](const Mat3& rotationA, const Mat3& rotationB, const Vec3& offset, double sink) {
+        const Vec3 up = Vec3::UnitZ();
+        const Vec3 highestA = rotationA * (rotationA.transpose() * up).cwiseSign().cwiseProduct(halfA);
+        const Vec3 lowestB = rotationB * -(rotationB.transpose() * up).cwiseSign().cwiseProduct(halfB);
+        const Vec3 position = highestA - lowestB + offset - sink * up;
+        return Pose{rotationA.transpose() * rotationB, rotationA.transpose() * position};
+    };
+    switch (kind) {
+        case RestingFace: {
+            const Mat3 yaw = testing::rotationAbout(Vec3::UnitZ(), unit(random) < 0.5 ? 0.0 : symmetric(random) * M_PI);
+            return restOnTop(tilt(random, 0.01) * yaw, (symmetric(random) * 0.5 + 0.5) * 0.002 * size);
+        }
+        case FaceNearTolerance: {
+            const double angle = angularTolerance * (1 + 0.2 * symmetric(random));
+            const Vec3 axis = testing::rotationAbout(Vec3::UnitZ(), symmetric(random) * M_PI) * Vec3::UnitX();
+            return restOnTop(testing::rotationAbout(axis, angle), unit(random) * 0.002 * size);
+        }
+        case EdgeEdge: {
+            const Mat3 aEdgeUp = testing::rotationAbout(Vec3::UnitY(), M_PI / 4 + 0.05 * symmetric(random));
+            const Mat3 edgeDown = testing::rotationAbout(Vec3::UnitZ(), symmetric(random) * M_PI) *
+                                  testing::rotationAbout(Vec3::UnitX(), M_PI / 4 + 0.05 * symmetric(random));
+            const double reach = 0.3 * std::min(halfA.minCoeff(), halfB.minCoeff());
+            return touching(aEdgeUp, edgeDown, Vec3(symmetric(random), symmetric(random), 0) * reach,
+                            unit(random) * 0.01 * size);
+        }
+        case VertexFace: {
+            const Mat3 cornerDown = Eigen::Quaterniond::FromTwoVectors(Vec3(1, 1, 1).normalized(), -Vec3::UnitZ())
+                                        .toRotationMatrix();
+            return restOnTop(tilt(random, 0.2) * cornerDown, unit(random) * 0.01 * size);
+        }
+        case Deep:
+            return Pose{randomRotation(random),
+                        Vec3(symmetric(random), symmetric(random), symmetric(random)) * (0.3 * halfA.minCoeff())};
+        case NearlyTouching: {
+            const double reach = 0.3 * std::min(halfA.minCoeff(), halfB.minCoeff());
+            return touching(randomRotation(random), randomRotation(random),
+                            Vec3(symmetric(random), symmetric(random), 0) * reach, 0.005 * size * symmetric(random));
+        }
+        default:
+            return Pose{randomRotation(random),
+                        Vec3(symmetric(random), symmetric(random), symmetric(random)) * (1.1 * size)};
+    }
+}
+
+// One answer as written to the file: the pair type, the pair's size, then the manifold.
+struct Record {
+    int type;
+    double size;
+    Manifold manifold;
+};
+
+void write(std::FILE* out, int type, double size, const Manifold& m) {
+    std::fwrite(&type, sizeof type, 1, out);
+    std::fwrite(&size, sizeof size, 1, out);
+    std::fwrite(m.normal.data(), sizeof(double), 3, out);
+    std::fwrite(&m.pointCount, sizeof m.pointCount, 1, out);
+    const int features[4] = {int(m.featureA.type), m.featureA.index, int(m.featureB.type), m.featureB.index};
+    std::fwrite(features, sizeof(int), 4, out);
+    for (int i = 0; i < m.pointCount; ++i) {
+        std::fwrite(m.points[i].position.data(), sizeof(double), 3, out);
+        std::fwrite(&m.points[i].depth, sizeof(double), 1, out);
+    }
+}
+
+bool read(std::FILE* in, Record& r) {
+    if (std::fread(&r.type, sizeof r.type, 1, in) != 1) return false;
+    std::fread(&r.size, sizeof r.size, 1, in);
+    std::fread(r.manifold.normal.data(), sizeof(double), 3, in);
+    std::fread(&r.manifold.pointCount, sizeof(int), 1, in);
+    int features[4];
+    std::fread(features, sizeof(int), 4, in);
+    r.manifold.featureA = {FeatureType(features[0]), features[1]};
+    r.manifold.featureB = {FeatureType(features[2]), features[3]};
+    for (int i = 0; i < r.manifold.pointCount; ++i) {
+        std::fread(r.manifold.points[i].position.data(), sizeof(double), 3, in);
+        std::fread(&r.manifold.points[i].depth, sizeof(double), 1, in);
+    }
+    return true;
+}
+
+// Pair types in the file: box–box kinds 0..6, then these.
+enum { BoxPlane = KindCount, HullPlane, HullHull, BoxHull, TypeCount };
+std::string typeName(int type) {
+    if (type < KindCount) return std::string("box-box ") + kKindNames[type];
+    const char* names[] = {"box-plane", "hull-plane", "hull-hull", "box-hull"};
+    return names[type - KindCount];
+}
+
+std::vector<Vec3> sphereHullPoints(std::mt19937& random, int count, const Vec3& scale) {
+    std::normal_distribution<double> normal;
+    std::vector<Vec3> points;
+    for (int i = 0; i < count; ++i)
+        points.push_back(Vec3(normal(random), normal(random), normal(random)).normalized().cwiseProduct(scale));
+    return points;
+}
+
+// The hulls of the hull pairs: small random hulls, a cube's hull, a tessellated sphere (caps at
+// larger tolerances), a long thin prism.
+std::vector<Polytope> makeHulls(std::mt19937& random) {
+    std::uniform_real_distribution<double> unit(0, 1);
+    std::vector<Polytope> hulls;
+    std::vector<Vec3> cube;
+    for (int v = 0; v < 8; ++v) cube.push_back(Vec3(v & 1 ? 0.5 : -0.5, v & 2 ? 0.5 : -0.5, v & 4 ? 0.5 : -0.5));
+    hulls.push_back(Polytope::fromPoints(cube));
+    for (int i = 0; i < 12; ++i) {
+        const int count = 6 + static_cast<int>(unit(random) * 27);
+        hulls.push_back(Polytope::fromPoints(
+            sphereHullPoints(random, count, Vec3(0.2 + unit(random), 0.2 + unit(random), 0.2 + unit(random)))));
+    }
+    // A tessellated sphere: near-coplanar neighbouring faces (caps), and above the vertex loop's limit.
+    std::vector<Vec3> sphere;
+    const int rings = 10, segments = 16;
+    for (int r = 1; r < rings; ++r)
+        for (int s = 0; s < segments; ++s) {
+            const double theta = M_PI * r / rings, phi = 2 * M_PI * s / segments;
+            sphere.push_back(0.6 * Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)));
+        }
+    sphere.push_back(Vec3(0, 0, 0.6)), sphere.push_back(Vec3(0, 0, -0.6));
+    hulls.push_back(Polytope::fromPoints(sphere));
+    std::vector<Vec3> prism;
+    for (int s = 0; s < 6; ++s)
+        for (double z : {-1.5, 1.5})
+            prism.push_back(Vec3(0.15 * std::cos(M_PI * s / 3), 0.15 * std::sin(M_PI * s / 3), z));
+    hulls.push_back(Polytope::fromPoints(prism));
+    return hulls;
+}
+
+Pose hullPose(const Polytope& a, const Polytope& b, std::mt19937& random) {
+    std::uniform_real_distribution<double> unit(0, 1), symmetric(-1, 1);
+    const double size = a.radius() + b.radius();
+    const double pick = unit(random);
+    const Mat3 rotation = pick < 0.3 ? tilt(random, 0.05) : randomRotation(random);
+    if (pick < 0.85) {
+        // B's lowest point near A's highest along a random direction (from 0.2 % apart to 1 % sunk).
+        const Vec3 up = pick < 0.3 ? Vec3(Vec3::UnitZ()) : Vec3(randomRotation(random) * Vec3::UnitZ());
+        const Vec3 highestA = a.vertices()[a.supportVertex(up)];
+        const Vec3 lowestB = rotation * b.vertices()[b.supportVertex(rotation.transpose() * -up)];
+        const Vec3 sideways = Vec3(symmetric(random), symmetric(random), symmetric(random)) * (0.05 * size);
+        const Vec3 slide = sideways - sideways.dot(up) * up;
+        return Pose{rotation, highestA - lowestB + slide - up * (size * (0.004 + 0.006 * symmetric(random)))};
+    }
+    return Pose{rotation, Vec3(symmetric(random), symmetric(random), symmetric(random)) * (0.7 * size)};
+}
+
+int dump(const char* path) {
+    std::FILE* out = std::fopen(path, "wb");
+    if (!out) return std::perror(path), 2;
+    std::uniform_real_distribution<double> unit(0, 1), symmetric(-1, 1);
+    // Box–box: 20 000 poses of each kind.
+    {
+        std::mt19937 random(20261126);
+        for (int trial = 0; trial < 20000 * KindCount; ++trial) {
+            const Vec3 halfA = randomHalfExtents(random), halfB = randomHalfExtents(random);
+            const Polytope a = Polytope::box(halfA), b = Polytope::box(halfB);
+            const Settings settings = randomSettings(random, halfA.norm() + halfB.norm());
+            const Kind kind = Kind(trial % KindCount);
+            const Pose relative = boxPose(kind, halfA, halfB, settings.angularTolerance, random);
+            const Pose world{randomRotation(random), Vec3(unit(random), unit(random), unit(random)) * 10};
+            const Pose poseB{world.rotation * relative.rotation, world.apply(relative.position)};
+            write(out, kind, a.radius() + b.radius(), collide(a, world, b, poseB, settings));
+        }
+    }
+    std::mt19937 random(20261127);
+    const std::vector<Polytope> hulls = makeHulls(random);
+    auto planeNear = [&](const Polytope& a, const Pose& pose) {
+        // A plane through a point near A's lowest along a random (often nearly vertical) normal.
+        const Vec3 normal = (unit(random) < 0.5 ? tilt(random, 0.02) : randomRotation(random)) * Vec3::UnitZ();
+        const Vec3 lowest = pose.apply(a.vertices()[a.supportVertex(pose.rotation.transpose() * -normal)]);
+        const double offset = normal.dot(lowest) + a.radius() * 0.02 * symmetric(random);
+        return HalfSpace{normal * (unit(random) < 0.5 ? 1.0 : 3.0), offset * (unit(random) < 0.5 ? 1.0 : 3.0)};
+    };
+    auto randomPose = [&] {
+        return Pose{unit(random) < 0.3 ? tilt(random, 0.02) : randomRotation(random),
+                    Vec3(symmetric(random), symmetric(random), symmetric(random)) * 5};
+    };
+    // Box–plane and hull–plane: 100 000 each. A HalfSpace{n, o} scaled by 3 is the same plane.
+    for (int trial = 0; trial < 100000; ++trial) {
+        const Polytope a = Polytope::box(randomHalfExtents(random));
+        const Settings settings = randomSettings(random, a.radius());
+        const Pose pose = randomPose();
+        const HalfSpace plane = planeNear(a, pose);
+        write(out, BoxPlane, a.radius(), collide(a, pose, plane, settings));
+    }
+    for (int trial = 0; trial < 100000; ++trial) {
+        const Polytope& a = hulls[trial % hulls.size()];
+        const Settings settings = randomSettings(random, a.radius());
+        const Pose pose = randomPose();
+        const HalfSpace plane = planeNear(a, pose);
+        write(out, HullPlane, a.radius(), collide(a, pose, plane, settings));
+    }
+    // Hull–hull and box–hull: 100 000 each.
+    for (int trial = 0; trial < 100000; ++trial) {
+        const Polytope& a = hulls[trial % hulls.size()];
+        const Polytope& b = hulls[(trial / hulls.size()) % hulls.size()];
+        const Settings settings = randomSettings(random, a.radius() + b.radius());
+        const Pose relative = hullPose(a, b, random);
+        const Pose world = randomPose();
+        const Pose poseB{world.rotation * relative.rotation, world.apply(relative.position)};
+        write(out, HullHull, a.radius() + b.radius(), collide(a, world, b, poseB, settings));
+    }
+    for (int trial = 0; trial < 100000; ++trial) {
+        const Polytope a = Polytope::box(randomHalfExtents(random));
+        const Polytope& b = hulls[trial % hulls.size()];
+        const Settings settings = randomSettings(random, a.radius() + b.radius());
+        const Pose relative = hullPose(a, b, random);
+        const Pose world = randomPose();
+        const Pose poseB{world.rotation * relative.rotation, world.apply(relative.position)};
+        write(out, BoxHull, a.radius() + b.radius(), collide(a, world, b, poseB, settings));
+    }
+    std::fclose(out);
+    return 0;
+}
+
+int compare(const char* beforePath, const char* afterPath) {
+    std::FILE* before = std::fopen(beforePath, "rb");
+    std::FILE* after = std::fopen(afterPath, "rb");
+    if (!before || !after) return std::perror("compare"), 2;
+    struct Largest {
+        long poses = 0, inContact = 0, points = 0, identical = 0, mismatches = 0;
+        double normal = 0, depth = 0, position = 0;  // relative to the pair's size (normal: |Δn|)
+    };
+    std::map<int, Largest> types;
+    Record x, y;
+    bool ok = true;
+    while (read(before, x)) {
+        if (!read(after, y) || y.type != x.type) {
+            std::printf("the files differ in length or order\n");
+            return 1;
+        }
+        Largest& l = types[x.type];
+        ++l.poses;
+        const Manifold &m = x.manifold, &n = y.manifold;
+        const bool sameShape = m.pointCount == n.pointCount && m.featureA.type == n.featureA.type &&
+                               m.featureA.index == n.featureA.index && m.featureB.type == n.featureB.type &&
+                               m.featureB.index == n.featureB.index;
+        if (!sameShape) {
+            ++l.mismatches;
+            continue;
+        }
+        bool bits = true;
+        if (m.pointCount > 0) {
+            ++l.inContact;
+            l.points += m.pointCount;
+            l.normal = std::max(l.normal, (m.normal - n.normal).norm());
+            bits = bits && std::memcmp(m.normal.data(), n.normal.data(), 3 * sizeof(double)) == 0;
+            for (int i = 0; i < m.pointCount; ++i) {
+                l.position = std::max(l.position, (m.points[i].position - n.points[i].position).norm() / x.size);
+                l.depth = std::max(l.depth, std::abs(m.points[i].depth - n.points[i].depth) / x.size);
+                bits = bits && std::memcmp(m.points[i].position.data(), n.points[i].position.data(), 3 * sizeof(double)) == 0 &&
+                       std::memcmp(&m.points[i].depth, &n.points[i].depth, sizeof(double)) == 0;
+            }
+        }
+        l.identical += bits;
+    }
+    std::printf("%-30s %8s %8s %8s %9s %10s %10s %10s %10s\n", "pair type", "poses", "contact", "points", "identical",
+                "mismatch", "|dn|", "ddepth/s", "dpoint/s");
+    for (const auto& [type, l] : types) {
+        std::printf("%-30s %8ld %8ld %8ld %9ld %10ld %10.3g %10.3g %10.3g\n", typeName(type).c_str(), l.poses,
+                    l.inContact, l.points, l.identical, l.mismatches, l.normal, l.depth, l.position);
+        ok = ok && l.mismatches == 0 && l.normal <= 1e-9 && l.depth <= 1e-9 && l.position <= 1e-9;
+    }
+    return ok ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc == 3 && std::string(argv[1]) == "dump") return dump(argv[2]);
+    if (argc == 4 && std::string(argv[1]) == "compare") return compare(argv[2], argv[3]);
+    std::fprintf(stderr, "usage: manifold_dump dump FILE | manifold_dump compare BEFORE AFTER\n");
+    return 2;
+}
