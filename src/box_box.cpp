@@ -10,6 +10,7 @@
 // may add a point) the pair goes to it whole.
 #include "box_box.hpp"
 
+#include "box_shape.hpp"
 #include "collide_general.hpp"
 #include "feature_intersection.hpp"
 #include "gauss_map.hpp"
@@ -27,88 +28,6 @@ namespace {
 // away) are more than twice the tolerance away, so no face has a cap (faceCap) and no direction
 // is within the tolerance of two faces' normals on opposite sides of the box.
 constexpr double kMaxAngularTolerance = 0.7;
-
-// Polytope::box numbers vertex v with the signs of its bits (x: 1, y: 2, z: 4), the faces
-// −x, +x, −y, +y, −z, +z, and Polytope::buildTopology the edges in the order of their (tail, head)
-// vertex pairs, tail < head: (0,1) (0,2) (0,4) (1,3) (1,5) (2,3) (2,6) (3,7) (4,5) (4,6) (5,7) (6,7).
-// kBoxEdge[v][axis] is the edge from v along `axis` (box_box_test checks both against Polytope::box).
-constexpr int kBoxEdge[8][3] = {{0, 1, 2}, {0, 3, 4}, {5, 1, 6}, {5, 3, 7},
-                                {8, 9, 2}, {8, 10, 4}, {11, 9, 6}, {11, 10, 7}};
-int boxFace(int axis, bool positive) { return 2 * axis + (positive ? 1 : 0); }
-
-}  // namespace
-
-// gauss_map.cpp's selectFeature for a box, on the same numbers. A box's face normals are exactly
-// ±e_i and its edge directions exactly ±e_i (box_box_test checks it), so every dot product
-// selectFeature takes is a component of `direction` up to sign, exactly:
-// - faces: the support vertex s (bit i set where direction_i > 0) has the faces ±e_i whose sign is
-//   that of direction_i (the others around the candidate vertices have cosine −|direction_i|,
-//   below the tolerance's positive cosine): cosine |direction_i|, largest wins, ties to the lowest
-//   index, a face at exactly the tolerance's cosine taken;
-// - edges: the three edges of s lie between their faces' normals and have sine |direction_i|; a
-//   neighbour of s across axis m joins the candidates (selectFeature's `around`) where its edge is
-//   within the tolerance of ⟂ direction, and its other two edges lie between their normals only
-//   where direction_m is exactly 0. Least sine wins, ties to the lowest index, one at exactly the
-//   tolerance's sine taken.
-Feature selectBoxFeature(const Vec3& d, const AngularTolerance& tolerance) {
-    const int s = (d.x() > 0 ? 1 : 0) | (d.y() > 0 ? 2 : 0) | (d.z() > 0 ? 4 : 0);
-    Feature best{FeatureType::Vertex, s};
-    double bestCos = tolerance.cosine;
-    for (int i = 0; i < 3; ++i) {
-        const double c = std::abs(d[i]);
-        const int face = boxFace(i, d[i] > 0);
-        if (c > bestCos || (c == bestCos && (best.type != FeatureType::Face || face < best.index)))
-            bestCos = c, best = {FeatureType::Face, face};
-    }
-    if (best.type == FeatureType::Face) return best;
-    double bestSin = tolerance.sine;
-    auto consider = [&](int edge, double sine) {
-        if (sine > bestSin || (sine == bestSin && best.type == FeatureType::Edge && edge > best.index)) return;
-        bestSin = sine, best = {FeatureType::Edge, edge};
-    };
-    for (int i = 0; i < 3; ++i) consider(kBoxEdge[s][i], std::abs(d[i]));
-    for (int m = 0; m < 3; ++m) {
-        if (d[m] != 0) continue;
-        const int neighbour = s ^ (1 << m);
-        for (int i = 0; i < 3; ++i)
-            if (i != m) consider(kBoxEdge[neighbour][i], std::abs(d[i]));
-    }
-    return best;
-}
-
-namespace {
-
-// A box feature in A's frame: collide.cpp's FeatureGeometry without its heap-backed cap list
-// (a box face has no cap below kMaxAngularTolerance), with the same arithmetic — the same
-// Pose::apply of the same vertices (A's own vertices as they are: the identity pose changes no bit).
-struct BoxFeature {
-    FeatureType type = FeatureType::Vertex;
-    int count = 0;
-    Vec3 points[4];
-    Vec3 planeNormal = Vec3::Zero();  // faces only
-    double planeOffset = 0;
-};
-
-BoxFeature boxFeature(const Polytope& box, const Feature& feature, const Pose* toCommon) {
-    BoxFeature geometry;
-    geometry.type = feature.type;
-    int storage[2];
-    const int* indices = nullptr;
-    geometry.count = featureVertices(box, feature, &indices, storage);
-    for (int i = 0; i < geometry.count; ++i)
-        geometry.points[i] = toCommon ? toCommon->apply(box.vertices()[indices[i]]) : box.vertices()[indices[i]];
-    if (feature.type == FeatureType::Face) {
-        const Polytope::Face& face = box.faces()[feature.index];
-        if (toCommon) {
-            geometry.planeNormal = toCommon->rotation * face.normal;
-            geometry.planeOffset = face.offset + geometry.planeNormal.dot(toCommon->position);
-        } else {
-            geometry.planeNormal = face.normal;
-            geometry.planeOffset = face.offset;
-        }
-    }
-    return geometry;
-}
 
 FeatureGeometry generalGeometry(const BoxFeature& feature) {
     FeatureGeometry geometry;
@@ -445,9 +364,10 @@ void collideBoxBoxInto(const Polytope& a, const Pose& poseA, const Polytope& b, 
     if (!(growth.faceOverlapLowerBound >= kClearlySmallerOverlap * normalOverlap + tolerance)) return general();
 
     // Stage 2: one feature per box (B's with −n in its own frame).
-    const AngularTolerance angularTolerance(settings.angularTolerance);
-    manifold.featureA = selectBoxFeature(normal, angularTolerance);
-    manifold.featureB = selectBoxFeature(bInA.rotation.transpose() * -normal, angularTolerance);
+    LazyAngularTolerance angularTolerance(settings.angularTolerance);
+    const Vec3 directionB = bInA.rotation.transpose() * -normal;
+    manifold.featureA = selectBoxFeature(normal, boxSupport(normal), angularTolerance);
+    manifold.featureB = selectBoxFeature(directionB, boxSupport(directionB), angularTolerance);
     const BoxFeature featureA = boxFeature(a, manifold.featureA, nullptr);
     const BoxFeature featureB = boxFeature(b, manifold.featureB, &bInA);
     refineNormal(normal, normalOverlap, featureA, featureB, pair);

@@ -3,7 +3,7 @@
 
 #include <gdcontact/collide.hpp>
 
-#include "gauss_map.hpp"
+#include "box_shape.hpp"
 
 #include <cmath>
 
@@ -14,10 +14,6 @@ namespace gdc::detail {
 /// Gauss map gives each direction at most one face and no face a cap; larger tolerances go to
 /// the general pipeline).
 bool boxBoxApplies(const Polytope& a, const Polytope& b, const Settings& settings);
-
-/// selectFeature (gauss_map.hpp) for a box made by Polytope::box, in closed form: the same feature
-/// for a unit `direction` in the box's frame and a tolerance below 0.7 rad.
-Feature selectBoxFeature(const Vec3& direction, const AngularTolerance& tolerance);
 
 /// growthDistance's closed form for two boxes (growth_distance.cpp, boxGrowthDistance), bit for
 /// bit: valid, the normal and the face-overlap bound (B at `rotationB`, `centreOffset` = p_B − p_A

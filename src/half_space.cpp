@@ -8,6 +8,7 @@
 // emitManifold. tests/half_space_test.cpp runs both on random poses.
 #include "half_space.hpp"
 
+#include "box_shape.hpp"
 #include "collide_general.hpp"
 #include "feature_intersection.hpp"
 #include "gauss_map.hpp"
@@ -15,17 +16,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <type_traits>
 
 namespace gdc::detail {
 namespace {
-
-// Polytope::box's layout (polytope.cpp, pinned by tests/half_space_test.cpp): vertex i has the
-// signs of bits (x: 1, y: 2, z: 4); face 2k has normal −e_k and face 2k + 1 has +e_k; edges are
-// numbered by (tail, head) with tail < head. kBoxEdge[v][k] is the edge from vertex v along axis k.
-constexpr int kBoxEdge[8][3] = {{0, 1, 2}, {0, 3, 4}, {5, 1, 6}, {5, 3, 7},
-                                {8, 9, 2}, {8, 10, 4}, {11, 9, 6}, {11, 10, 7}};
 
 void requireFinite(const Pose& pose) {
     if (!pose.isFinite()) throw InvalidInput("the pose of A is not finite");
@@ -42,70 +36,6 @@ struct PlaneInA {
 // normaliseHalfSpace made.
 PlaneInA planeInA(const UnitHalfSpace& b, const Pose& poseA) {
     return {poseA.rotation.transpose() * b.normal, b.offset - b.normal.dot(poseA.position)};
-}
-
-// The comparisons of selectFeature with the Gauss-map tolerance's cosine and sine, settled by
-// Taylor bounds (cos θ ∈ [1 − θ²/2, 1 − θ²/2 + θ⁴/24], sin θ ∈ [θ − θ³/6, θ] for 0 ≤ θ ≤ 1)
-// wherever the value is clear of them by far more than rounding; only a value within that slack
-// of the tolerance pays for AngularTolerance's series, whose numbers then decide as they do in
-// selectFeature.
-class ToleranceTest {
-public:
-    explicit ToleranceTest(double radians) : radians_(radians), square_(radians * radians) {}
-
-    /// c ≥ AngularTolerance(radians).cosine: a face within the tolerance.
-    bool withinCosine(double c) {
-        const double lower = 1 - 0.5 * square_;
-        if (c >= lower + square_ * square_ / 24 + kSlack) return true;
-        if (c < lower - kSlack) return false;
-        return c >= exact().cosine;
-    }
-    /// s ≤ AngularTolerance(radians).sine: an edge within the tolerance.
-    bool withinSine(double s) {
-        if (s <= radians_ - radians_ * square_ / 6 - kSlack) return true;
-        if (s > radians_ + kSlack) return false;
-        return s <= exact().sine;
-    }
-
-private:
-    // Far above the rounding of the bounds and of AngularTolerance's series (a few 1e-16).
-    static constexpr double kSlack = 1e-14;
-    const AngularTolerance& exact() {
-        if (!exact_) exact_.emplace(radians_);
-        return *exact_;
-    }
-    double radians_, square_;
-    std::optional<AngularTolerance> exact_;
-};
-
-// Polytope::supportVertex for a box.
-int boxSupport(const Vec3& direction) {
-    return (direction.x() > 0 ? 1 : 0) | (direction.y() > 0 ? 2 : 0) | (direction.z() > 0 ? 4 : 0);
-}
-
-// selectFeature(box, direction, support, tolerance) in closed form. With the box's exact axes
-// every number selectFeature compares is a component of `direction`, exactly:
-// - faces: the face of the support vertex along axis k has cosine |d_k|; the other candidates
-//   (faces of neighbouring vertices) are the same faces or opposite ones at −|d_k|, which never
-//   win. So the face is the axis of largest |d_k| (ties: the lowest axis, the lowest face index),
-//   when |d_k| ≥ cos θ.
-// - edges: the edge along axis k has sine |d_k|, and every edge of the support vertex passes the
-//   between-the-normals test (its faces' normals point along the signs of d). An edge of a
-//   neighbour passes it only where a component of d is exactly 0, and then ties with the support
-//   vertex's parallel edge, whose index is lower. So the edge is the smallest |d_k| (ties: the
-//   lowest edge index), when |d_k| ≤ sin θ.
-Feature boxFeature(const Vec3& direction, int support, ToleranceTest& tolerance) {
-    const Vec3 c = direction.cwiseAbs();
-    int axis = c.y() > c.x() ? 1 : 0;
-    if (c.z() > c[axis]) axis = 2;
-    if (tolerance.withinCosine(c[axis])) return {FeatureType::Face, 2 * axis + ((support >> axis) & 1)};
-    const int* edges = kBoxEdge[support];
-    int edge = edges[0];
-    double sine = c.x();
-    for (int k = 1; k < 3; ++k)
-        if (c[k] < sine || (c[k] == sine && edges[k] < edge)) sine = c[k], edge = edges[k];
-    if (tolerance.withinSine(sine)) return {FeatureType::Edge, edge};
-    return {FeatureType::Vertex, support};
 }
 
 // The contacts as collideGeneral's `add` makes them (x lifted half its depth onto the plane), kept
@@ -284,8 +214,8 @@ void collideBox(const Polytope& a, const Pose& poseA, const PlaneInA& plane, con
     const int deepest = boxSupport(normal);
     const Vec3* vertices = a.vertices().data();
     if (plane.depthOf(vertices[deepest]) < query.keepDepth) return;
-    ToleranceTest angularTolerance(settings.angularTolerance);
-    manifold.featureA = boxFeature(normal, deepest, angularTolerance);
+    LazyAngularTolerance angularTolerance(settings.angularTolerance);
+    manifold.featureA = selectBoxFeature(normal, deepest, angularTolerance);
     manifold.featureB = {FeatureType::Face, 0};
     // A box's face is its whole cap (no other face lies within a tolerance below π/4).
     query.liftFeature(manifold.featureA, deepest, nullptr, [&](int v) { return plane.depthOf(vertices[v]); }, poseA,
