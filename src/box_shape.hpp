@@ -77,9 +77,9 @@ private:
 ///   neighbour passes it only where a component of d is exactly 0, and then ties with the support
 ///   vertex's parallel edge, whose index is lower. So the edge is the smallest |d_k| (ties: the
 ///   lowest edge index), when |d_k| ≤ sin θ.
-/// `support` is boxSupport(direction).
+/// `support` is boxSupport(direction). Always inlined: a call of its own cost box–plane 2 %.
 template <class Tolerance>
-Feature selectBoxFeature(const Vec3& direction, int support, Tolerance& tolerance) {
+[[gnu::always_inline]] inline Feature selectBoxFeature(const Vec3& direction, int support, Tolerance& tolerance) {
     const Vec3 c = direction.cwiseAbs();
     int axis = c.y() > c.x() ? 1 : 0;
     if (c.z() > c[axis]) axis = 2;
