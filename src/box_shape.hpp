@@ -5,6 +5,7 @@
 // hull's general answer (Polytope::supportVertex, selectFeature, featureVertices).
 #pragma once
 
+#include "feature_intersection.hpp"
 #include "gauss_map.hpp"
 
 #include <gdcontact/polytope.hpp>
@@ -105,6 +106,10 @@ struct BoxFeature {
     Vec3 planeNormal = Vec3::Zero();  // faces only
     double planeOffset = 0;
 };
+
+inline FeatureView view(const BoxFeature& feature) {
+    return {feature.type, feature.points, feature.count, feature.planeNormal, feature.planeOffset, nullptr, 0};
+}
 
 /// The geometry of `feature` of `box` mapped by `toCommon` (nullptr: the box's own frame) with the
 /// general pipeline's arithmetic (collide.cpp, featureGeometry: the same Pose::apply of the same

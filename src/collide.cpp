@@ -198,68 +198,6 @@ FeatureGeometry featureGeometry(const Polytope& polytope, const Feature& feature
     return geometry;
 }
 
-// The Gauss-map features widen the normal into a region; where a face was picked the exact
-// contact normal is a face normal (vertex–face, edge–face, face–face all rest on a face), and for
-// edge–edge it is the edges' common perpendicular. The candidates are the picked faces and the
-// other faces of their caps (all within the angular tolerance); the contact normal is the one
-// along which the pair overlaps least — the separating-axis choice, as ODE's dBoxBox makes it.
-// It depends on the geometry only: at tiny tilts the growth-distance normal lies between two
-// near-parallel faces within rounding, and choosing the face closer to it let the normal flip
-// between them from one tilt to the next (and between collide(A, B) and collide(B, A)). The
-// comparison is exact: two overlaps cross only where their faces are parallel, so a choice made
-// by rounding there picks between normals that agree to rounding. Equal overlaps fall back to the
-// face closer to the growth-distance normal (the face the cast hit).
-// `normalOverlap` is the pair's overlap along `normal`; both are updated together.
-void refineNormal(Vec3& normal, double& normalOverlap, const FeatureGeometry& a, const FeatureGeometry& b,
-                  const MinkowskiDifference& pair) {
-    Vec3 best = normal;
-    double bestOverlap = INFINITY, bestCos = -2;
-    auto consider = [&](const Vec3& candidate) {
-        const double overlap = overlapAlong(pair, candidate, normal, normalOverlap), cosine = candidate.dot(normal);
-        if (overlap < bestOverlap || (overlap == bestOverlap && cosine > bestCos))
-            bestOverlap = overlap, bestCos = cosine, best = candidate;
-    };
-    if (a.type == FeatureType::Face) {
-        consider(a.planeNormal);
-        for (const FeatureGeometry& face : a.capFaces) consider(face.planeNormal);
-    }
-    if (b.type == FeatureType::Face) {
-        consider(-b.planeNormal);
-        for (const FeatureGeometry& face : b.capFaces) consider(-face.planeNormal);
-    }
-    if (bestCos > -2) {
-        normal = best, normalOverlap = bestOverlap;
-        return;
-    }
-    if (a.type != FeatureType::Edge || b.type != FeatureType::Edge) return;
-    if (a.capFaces.empty() && b.capFaces.empty()) {
-        edgeEdgeNormal(a.points[0], a.points[1], b.points[0], b.points[1], pair, normal, normalOverlap);
-        return;
-    }
-    // Edge chains: each pair of their edges has its common perpendicular; the contact normal is the
-    // one along which the pair overlaps least (as among a cap's faces above), so it depends on the
-    // chains only, not on which of their nearly collinear edges rounding selected.
-    auto piecesOf = [](const FeatureGeometry& feature) {
-        SmallVector<const FeatureGeometry*, 16> pieces;
-        if (feature.capFaces.empty()) pieces.push_back(&feature);
-        for (const FeatureGeometry& piece : feature.capFaces) pieces.push_back(&piece);
-        return pieces;
-    };
-    const auto piecesA = piecesOf(a), piecesB = piecesOf(b);
-    for (const FeatureGeometry* edgeA : piecesA)
-        for (const FeatureGeometry* edgeB : piecesB) {
-            Vec3 candidate = normal;
-            double overlap = normalOverlap;
-            if (!edgeEdgeNormal(edgeA->points[0], edgeA->points[1], edgeB->points[0], edgeB->points[1], pair, candidate,
-                                overlap))
-                continue;  // parallel edges
-            const double cosine = candidate.dot(normal);
-            if (overlap < bestOverlap || (overlap == bestOverlap && cosine > bestCos))
-                bestOverlap = overlap, bestCos = cosine, best = candidate;
-        }
-    if (bestCos > -2) normal = best, normalOverlap = bestOverlap;
-}
-
 // Whether the deepest lifted point provably carries the whole penetration along n, so the ray cast
 // of the depth confirmation (separationAlong) could not add a point. The penetration along n is
 // t* = max{t : t·n ∈ A − B}, and every direction m with m·n > 0 bounds it from above by the support
@@ -349,6 +287,66 @@ bool edgeEdgeNormal(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& 
     return true;
 }
 
+// The Gauss-map features widen the normal into a region; where a face was picked the exact
+// contact normal is a face normal (vertex–face, edge–face, face–face all rest on a face), and for
+// edge–edge it is the edges' common perpendicular. The candidates are the picked faces and the
+// other faces of their caps (all within the angular tolerance); the contact normal is the one
+// along which the pair overlaps least — the separating-axis choice, as ODE's dBoxBox makes it.
+// It depends on the geometry only: at tiny tilts the growth-distance normal lies between two
+// near-parallel faces within rounding, and choosing the face closer to it let the normal flip
+// between them from one tilt to the next (and between collide(A, B) and collide(B, A)). The
+// comparison is exact: two overlaps cross only where their faces are parallel, so a choice made
+// by rounding there picks between normals that agree to rounding. Equal overlaps fall back to the
+// face closer to the growth-distance normal (the face the cast hit).
+void refineNormal(Vec3& normal, double& normalOverlap, const FeatureView& a, const FeatureView& b,
+                  const MinkowskiDifference& pair) {
+    Vec3 best = normal;
+    double bestOverlap = INFINITY, bestCos = -2;
+    auto consider = [&](const Vec3& candidate) {
+        const double overlap = overlapAlong(pair, candidate, normal, normalOverlap), cosine = candidate.dot(normal);
+        if (overlap < bestOverlap || (overlap == bestOverlap && cosine > bestCos))
+            bestOverlap = overlap, bestCos = cosine, best = candidate;
+    };
+    if (a.type == FeatureType::Face) {
+        consider(a.planeNormal);
+        for (int i = 0; i < a.pieceCount; ++i) consider(a.pieces[i].planeNormal);
+    }
+    if (b.type == FeatureType::Face) {
+        consider(-b.planeNormal);
+        for (int i = 0; i < b.pieceCount; ++i) consider(-b.pieces[i].planeNormal);
+    }
+    if (bestCos > -2) {
+        normal = best, normalOverlap = bestOverlap;
+        return;
+    }
+    if (a.type != FeatureType::Edge || b.type != FeatureType::Edge) return;
+    if (a.pieceCount == 0 && b.pieceCount == 0) {
+        edgeEdgeNormal(a.points[0], a.points[1], b.points[0], b.points[1], pair, normal, normalOverlap);
+        return;
+    }
+    // Edge chains: each pair of their edges has its common perpendicular; the contact normal is the
+    // one along which the pair overlaps least (as among a cap's faces above), so it depends on the
+    // chains only, not on which of their nearly collinear edges rounding selected. An edge without
+    // a chain is its own one piece.
+    auto edge = [](const FeatureView& feature, int i) {
+        return feature.pieceCount == 0 ? feature.points : feature.pieces[i].points.data();
+    };
+    const int countA = std::max(a.pieceCount, 1), countB = std::max(b.pieceCount, 1);
+    for (int i = 0; i < countA; ++i)
+        for (int j = 0; j < countB; ++j) {
+            const Vec3* edgeA = edge(a, i);
+            const Vec3* edgeB = edge(b, j);
+            Vec3 candidate = normal;
+            double overlap = normalOverlap;
+            if (!edgeEdgeNormal(edgeA[0], edgeA[1], edgeB[0], edgeB[1], pair, candidate, overlap))
+                continue;  // parallel edges
+            const double cosine = candidate.dot(normal);
+            if (overlap < bestOverlap || (overlap == bestOverlap && cosine > bestCos))
+                bestOverlap = overlap, bestCos = cosine, best = candidate;
+        }
+    if (bestCos > -2) normal = best, normalOverlap = bestOverlap;
+}
+
 void emitManifold(const LiftedPoints& points, const Vec3& normal, const Pose& commonToWorld, const Settings& settings,
                   double tolerance, const Vec3* centroids, int centroidCount, Manifold& manifold) {
     int chosen[kMaxManifoldPoints];
@@ -436,7 +434,7 @@ Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b,
     }
     const FeatureGeometry featureA = featureGeometry(a, manifold.featureA, piecesA, Pose{});
     const FeatureGeometry featureB = featureGeometry(b, manifold.featureB, piecesB, bInA);
-    if (!separatingAxis) refineNormal(normal, normalOverlap, featureA, featureB, pair);  // SAT's is exact already
+    if (!separatingAxis) refineNormal(normal, normalOverlap, view(featureA), view(featureB), pair);  // SAT's is exact already
 
     // Stage 3: intersection in the contact plane, each point with its own depth.
     LiftedPoints kept =

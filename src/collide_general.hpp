@@ -36,6 +36,13 @@ bool separatedByEarlyOut(const MinkowskiDifference& pair, const Vec3& centreOffs
 bool edgeEdgeNormal(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, const MinkowskiDifference& pair,
                     Vec3& normal, double& normalOverlap);
 
+/// Stage 1's last step, once the features are known: the contact normal among the features' faces
+/// (and their caps' faces) is the one along which the pair overlaps least; edge–edge (chains: each
+/// pair of their edges), the edges' common perpendicular; `normal` and `normalOverlap` updated
+/// together (collide.cpp). Called by the general pipeline and the box–box path alike.
+void refineNormal(Vec3& normal, double& normalOverlap, const FeatureView& a, const FeatureView& b,
+                  const MinkowskiDifference& pair);
+
 /// Writes the lifted points (A's frame) to the manifold in world coordinates, ranked by importance
 /// and reduced to settings.maxContacts (reduction.hpp: rankContacts, with the bodies' `centroids`
 /// in A's frame for the centroid rule; `tolerance` the pair's rounding length); throws InvalidInput

@@ -10,23 +10,24 @@ using Polygon2 = SmallVector<Vec2, 16>;
 
 double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-Polygon2 project(const FeatureGeometry& feature, const Vec3& u, const Vec3& v) {
-    Polygon2 out;
-    for (const Vec3& p : feature.points) out.push_back(Vec2(p.dot(u), p.dot(v)));
-    if (out.size() >= 3) {  // make it counter-clockwise in the plane (B's face arrives clockwise)
+// The feature's points in the plane (u, v), a face's loop made counter-clockwise (B's face arrives
+// clockwise), written into `out`.
+void project(const FeatureView& feature, const Vec3& u, const Vec3& v, Polygon2& out) {
+    for (int i = 0; i < feature.count; ++i) out.push_back(Vec2(feature.points[i].dot(u), feature.points[i].dot(v)));
+    if (out.size() >= 3) {
         double area = cross2(out[out.size() - 1], out[0]);
         for (std::size_t i = 0; i + 1 < out.size(); ++i) area += cross2(out[i], out[i + 1]);
         if (area < 0)
             for (std::size_t i = 0, j = out.size() - 1; i < j; ++i, --j) std::swap(out[i], out[j]);
     }
-    return out;
 }
 
 // Sutherland–Hodgman: clip a convex polygon (or a segment, or a point) by the half-planes left
-// of each CCW edge of `clip`.
-Polygon2 clipByConvexPolygon(const Polygon2& subject, const Polygon2& clip, double tolerance) {
-    // Two buffers in turn; the subject itself is read by the first edge (no copy).
-    Polygon2 buffers[2];
+// of each CCW edge of `clip`, in the caller's two buffers in turn (the subject itself is read by
+// the first edge, no copy). Returns the region: one of the buffers, or the subject where no edge
+// of `clip` cut it.
+const Polygon2& clipByConvexPolygon(const Polygon2& subject, const Polygon2& clip, double tolerance,
+                                    Polygon2 (&buffers)[2]) {
     const Polygon2* input = &subject;
     int written = 0;  // buffers filled so far: the next one is never the one being read
     for (std::size_t e = 0; e < clip.size() && !input->empty(); ++e) {
@@ -59,25 +60,25 @@ Polygon2 clipByConvexPolygon(const Polygon2& subject, const Polygon2& clip, doub
     return *input;
 }
 
-Polygon2 intersectSegments(const Vec2& a0, const Vec2& a1, const Vec2& b0, const Vec2& b1, double tolerance) {
-    Polygon2 out;
+// The segments' crossing, or their overlap where they are parallel and on one line, into `out`.
+void intersectSegments(const Vec2& a0, const Vec2& a1, const Vec2& b0, const Vec2& b1, double tolerance,
+                       Polygon2& out) {
     Vec2 da = a1 - a0, db = b1 - b0;
     double denominator = cross2(da, db);
     double la = da.norm(), lb = db.norm();
     if (std::abs(denominator) <= 1e-9 * la * lb) {
         // Parallel: overlap interval along A, if B lies on A's line.
-        if (std::abs(cross2(da, b0 - a0)) > tolerance * la) return out;
+        if (std::abs(cross2(da, b0 - a0)) > tolerance * la) return;
         double t0 = (b0 - a0).dot(da) / (la * la), t1 = (b1 - a0).dot(da) / (la * la);
         double lo = std::max(0.0, std::min(t0, t1)), hi = std::min(1.0, std::max(t0, t1));
-        if (hi < lo - tolerance / la) return out;
+        if (hi < lo - tolerance / la) return;
         out.push_back(a0 + std::clamp(lo, 0.0, 1.0) * da);
         if ((hi - lo) * la > tolerance) out.push_back(a0 + std::clamp(hi, 0.0, 1.0) * da);
-        return out;
+        return;
     }
     double s = cross2(b0 - a0, db) / denominator, t = cross2(b0 - a0, da) / denominator;
-    if (s < -tolerance / la || s > 1 + tolerance / la || t < -tolerance / lb || t > 1 + tolerance / lb) return out;
+    if (s < -tolerance / la || s > 1 + tolerance / la || t < -tolerance / lb || t > 1 + tolerance / lb) return;
     out.push_back(a0 + std::clamp(s, 0.0, 1.0) * da);
-    return out;
 }
 
 bool pointOnSegment(const Vec2& p, const Vec2& a, const Vec2& b, double tolerance) {
@@ -86,16 +87,19 @@ bool pointOnSegment(const Vec2& p, const Vec2& a, const Vec2& b, double toleranc
     return (a + t * d - p).norm() <= tolerance;
 }
 
-Polygon2 intersect2d(const Polygon2& a, const Polygon2& b, double tolerance) {
-    if (a.size() < b.size()) return intersect2d(b, a, tolerance);  // a has at least as many points
-    Polygon2 out;
-    if (a.size() >= 3) return clipByConvexPolygon(b, a, tolerance);
-    if (a.size() == 2 && b.size() == 2) return intersectSegments(a[0], a[1], b[0], b[1], tolerance);
-    if (a.size() == 2) {
+// The intersection of two projected features (the one with more points clips the other; B's
+// when as many), in the caller's buffers; returns the region.
+const Polygon2& intersect2d(const Polygon2& a, const Polygon2& b, double tolerance, Polygon2 (&buffers)[2]) {
+    if (a.size() < b.size()) return intersect2d(b, a, tolerance, buffers);  // a has at least as many points
+    if (a.size() >= 3) return clipByConvexPolygon(b, a, tolerance, buffers);
+    Polygon2& out = buffers[0];
+    if (a.size() == 2 && b.size() == 2) {
+        intersectSegments(a[0], a[1], b[0], b[1], tolerance, out);
+    } else if (a.size() == 2) {
         if (pointOnSegment(b[0], a[0], a[1], tolerance)) out.push_back(b[0]);
-        return out;
+    } else if ((a[0] - b[0]).norm() <= tolerance) {
+        out.push_back(b[0]);
     }
-    if ((a[0] - b[0]).norm() <= tolerance) out.push_back(b[0]);
     return out;
 }
 
@@ -104,7 +108,7 @@ Polygon2 intersect2d(const Polygon2& a, const Polygon2& b, double tolerance) {
 // per feature as height(q) = constant + gradient·q, and each point costs two multiply-adds.
 class LiftedHeight {
 public:
-    LiftedHeight(const FeatureGeometry& feature, const Vec3& u, const Vec3& v, const Vec3& n) {
+    LiftedHeight(const FeatureView& feature, const Vec3& u, const Vec3& v, const Vec3& n) {
         if (feature.type == FeatureType::Face) {
             // planeNormal·(q.x·u + q.y·v + h·n) = planeOffset, solved for h.
             const double normalAlongN = feature.planeNormal.dot(n);
@@ -151,21 +155,14 @@ void planeBasis(const Vec3& n, Vec3& u, Vec3& v) {
 
 namespace {
 
-// A feature (or one face of a cap) projected onto the contact plane once: its CCW polygon, its
-// bounds there, and its lifting back along n.
+// A feature (or one face of a cap) projected onto the contact plane once: its CCW polygon and its
+// lifting back along n.
 struct ProjectedPiece {
     Polygon2 polygon;
-    Vec2 lower, upper;
     LiftedHeight height;
 
-    ProjectedPiece(const FeatureGeometry& piece, const Vec3& u, const Vec3& v, const Vec3& n)
-        : polygon(project(piece, u, v)), height(piece, u, v, n) {
-        lower = upper = polygon[0];
-        for (const Vec2& p : polygon) lower = lower.cwiseMin(p), upper = upper.cwiseMax(p);
-    }
-    bool boundsMeet(const ProjectedPiece& other, double tolerance) const {
-        return (lower.array() <= other.upper.array() + tolerance).all() &&
-               (other.lower.array() <= upper.array() + tolerance).all();
+    ProjectedPiece(const FeatureView& piece, const Vec3& u, const Vec3& v, const Vec3& n) : height(piece, u, v, n) {
+        project(piece, u, v, polygon);
     }
 };
 
@@ -175,7 +172,8 @@ struct ProjectedPiece {
 void intersectPieces(const ProjectedPiece& a, const ProjectedPiece& b, int pieceA, int pieceB, const Vec3& u,
                      const Vec3& v, const Vec3& normal, double tolerance, double minimumDepth, bool spanRegion,
                      bool merge, LiftedPoints& out) {
-    Polygon2 region = intersect2d(a.polygon, b.polygon, tolerance);
+    Polygon2 buffers[2];
+    const Polygon2& region = intersect2d(a.polygon, b.polygon, tolerance, buffers);
     // Drop near-duplicate consecutive points produced where edges cross at a vertex.
     const double toleranceSquared = tolerance * tolerance;
     Polygon2 unique;
@@ -217,15 +215,14 @@ void intersectPieces(const ProjectedPiece& a, const ProjectedPiece& b, int piece
 
 }  // namespace
 
-LiftedPoints intersectFeatures(const FeatureGeometry& a, const FeatureGeometry& b, const Vec3& normal,
-                               double tolerance, double minimumDepth, bool spanRegion) {
+void intersectFeatures(const FeatureView& a, const FeatureView& b, const Vec3& normal, double tolerance,
+                       double minimumDepth, bool spanRegion, LiftedPoints& out) {
     Vec3 u, v;
     planeBasis(normal, u, v);
-    LiftedPoints all;
-    if (a.capFaces.empty() && b.capFaces.empty()) {
+    if (a.pieceCount == 0 && b.pieceCount == 0) {
         intersectPieces(ProjectedPiece(a, u, v, normal), ProjectedPiece(b, u, v, normal), 0, 0, u, v, normal,
-                        tolerance, minimumDepth, spanRegion, false, all);
-        return all;
+                        tolerance, minimumDepth, spanRegion, false, out);
+        return;
     }
     // A cap bends at its inner edges, so its outline alone would miss the deepest point (an inner
     // vertex of a tessellated sphere) and lift points onto the wrong face where the cap's
@@ -233,22 +230,40 @@ LiftedPoints intersectFeatures(const FeatureGeometry& a, const FeatureGeometry& 
     // corners, inner vertices, crossings of inner edges — and lifted onto the faces it lies on.
     // Points shared by neighbouring faces are kept once. Each face is projected once, and pairs
     // whose projections' bounds do not meet are skipped.
-    auto project = [&](const FeatureGeometry& feature, std::vector<ProjectedPiece>& pieces) {
-        if (feature.capFaces.empty()) {
+    struct Bounded {
+        ProjectedPiece piece;
+        Vec2 lower, upper;
+        Bounded(const FeatureView& feature, const Vec3& u, const Vec3& v, const Vec3& n) : piece(feature, u, v, n) {
+            lower = upper = piece.polygon[0];
+            for (const Vec2& p : piece.polygon) lower = lower.cwiseMin(p), upper = upper.cwiseMax(p);
+        }
+        bool meets(const Bounded& other, double tolerance) const {
+            return (lower.array() <= other.upper.array() + tolerance).all() &&
+                   (other.lower.array() <= upper.array() + tolerance).all();
+        }
+    };
+    auto project = [&](const FeatureView& feature, std::vector<Bounded>& pieces) {
+        if (feature.pieceCount == 0) {
             pieces.emplace_back(feature, u, v, normal);
             return;
         }
-        pieces.reserve(feature.capFaces.size());
-        for (const FeatureGeometry& face : feature.capFaces) pieces.emplace_back(face, u, v, normal);
+        pieces.reserve(feature.pieceCount);
+        for (int i = 0; i < feature.pieceCount; ++i) pieces.emplace_back(view(feature.pieces[i]), u, v, normal);
     };
-    std::vector<ProjectedPiece> piecesA, piecesB;
+    std::vector<Bounded> piecesA, piecesB;
     project(a, piecesA);
     project(b, piecesB);
     for (std::size_t i = 0; i < piecesA.size(); ++i)
         for (std::size_t j = 0; j < piecesB.size(); ++j)
-            if (piecesA[i].boundsMeet(piecesB[j], tolerance))
-                intersectPieces(piecesA[i], piecesB[j], static_cast<int>(i), static_cast<int>(j), u, v, normal,
-                                tolerance, minimumDepth, spanRegion, true, all);
+            if (piecesA[i].meets(piecesB[j], tolerance))
+                intersectPieces(piecesA[i].piece, piecesB[j].piece, static_cast<int>(i), static_cast<int>(j), u, v,
+                                normal, tolerance, minimumDepth, spanRegion, true, out);
+}
+
+LiftedPoints intersectFeatures(const FeatureGeometry& a, const FeatureGeometry& b, const Vec3& normal,
+                               double tolerance, double minimumDepth, bool spanRegion) {
+    LiftedPoints all;
+    intersectFeatures(view(a), view(b), normal, tolerance, minimumDepth, spanRegion, all);
     return all;
 }
 

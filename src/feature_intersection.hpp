@@ -29,6 +29,27 @@ struct FeatureGeometry {
     std::vector<FeatureGeometry> capFaces;
 };
 
+/// A feature as stage 3 and the normal's refinement read it, whoever stores it: its points (1 for a
+/// vertex, 2 for an edge, a face's loop) and, for a face, its plane, with the pieces of a face's cap
+/// or an edge's chain where it has them. A box's feature lives in fixed arrays (box_shape.hpp,
+/// BoxFeature: no pieces), a hull's in a FeatureGeometry; the view owns nothing, so the stages are
+/// written once for both and a box pays for no container.
+struct FeatureView {
+    FeatureType type = FeatureType::Vertex;
+    const Vec3* points = nullptr;
+    int count = 0;
+    Vec3 planeNormal = Vec3::Zero();  // faces only
+    double planeOffset = 0;
+    const FeatureGeometry* pieces = nullptr;  // FeatureGeometry::capFaces; nullptr and 0 for none
+    int pieceCount = 0;
+};
+
+inline FeatureView view(const FeatureGeometry& feature) {
+    return {feature.type,        feature.points.data(), static_cast<int>(feature.points.size()),
+            feature.planeNormal, feature.planeOffset,   feature.capFaces.data(),
+            static_cast<int>(feature.capFaces.size())};
+}
+
 struct LiftedPoint {
     Vec3 position;   // midway between the two features, in the common frame
     double depth;    // (point on A − point on B)·n: > 0 overlapping
@@ -58,5 +79,10 @@ void planeBasis(const Vec3& n, Vec3& u, Vec3& v);
 /// when the projections do not meet (the caller then falls back to the growth-distance witness).
 LiftedPoints intersectFeatures(const FeatureGeometry& a, const FeatureGeometry& b, const Vec3& normal,
                                double tolerance, double minimumDepth = -INFINITY, bool spanRegion = false);
+
+/// The same intersection for two feature views, appended to `out`: the one implementation, which
+/// the general pipeline (through the overload above) and the box–box path both call.
+void intersectFeatures(const FeatureView& a, const FeatureView& b, const Vec3& normal, double tolerance,
+                       double minimumDepth, bool spanRegion, LiftedPoints& out);
 
 }  // namespace gdc::detail

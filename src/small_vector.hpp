@@ -12,46 +12,74 @@ namespace gdc::detail {
 template <class T, std::size_t InlineCapacity>
 class SmallVector {
 public:
-    void push_back(const T& value) {
-        if (size_ < InlineCapacity) {
-            inline_[size_++] = value;
-            return;
-        }
-        if (size_ == InlineCapacity) spill_.assign(inline_.begin(), inline_.end());
-        spill_.push_back(value);
-        ++size_;
+    SmallVector() = default;
+    SmallVector(const SmallVector& other) { *this = other; }
+    SmallVector(SmallVector&& other) noexcept { *this = std::move(other); }
+    SmallVector& operator=(const SmallVector& other) {
+        if (this == &other) return *this;
+        clear();
+        reserve(other.size_);
+        std::copy(other.data_, other.data_ + other.size_, data_);
+        size_ = other.size_;
+        return *this;
     }
-    void clear() { size_ = 0, spill_.clear(); }
-    void swap(SmallVector& other) {
-        if (size_ <= InlineCapacity && other.size_ <= InlineCapacity) {
-            std::swap_ranges(inline_.begin(), inline_.begin() + std::max(size_, other.size_), other.inline_.begin());
+    SmallVector& operator=(SmallVector&& other) noexcept {
+        if (this == &other) return *this;
+        if (other.data_ == other.inline_.data()) {
+            std::copy(other.data_, other.data_ + other.size_, inline_.data());
+            spill_.clear();
+            data_ = inline_.data(), capacity_ = InlineCapacity;
         } else {
-            std::swap(inline_, other.inline_);
+            spill_.swap(other.spill_);
+            data_ = spill_.data(), capacity_ = spill_.size();
+            other.data_ = other.inline_.data(), other.capacity_ = InlineCapacity;
         }
-        spill_.swap(other.spill_);
-        std::swap(size_, other.size_);
+        size_ = other.size_;
+        other.size_ = 0;
+        return *this;
+    }
+
+    // Every access goes through `data_` (the inline array or the spill), with no branch on which.
+    void push_back(const T& value) {
+        if (size_ == capacity_) grow(size_ + 1);
+        data_[size_++] = value;
+    }
+    void clear() { size_ = 0; }
+    void swap(SmallVector& other) {
+        SmallVector temporary(std::move(other));
+        other = std::move(*this);
+        *this = std::move(temporary);
     }
     std::size_t size() const { return size_; }
     bool empty() const { return size_ == 0; }
-    T* data() { return size_ > InlineCapacity ? spill_.data() : inline_.data(); }
-    const T* data() const { return size_ > InlineCapacity ? spill_.data() : inline_.data(); }
-    T& operator[](std::size_t i) { return data()[i]; }
-    const T& operator[](std::size_t i) const { return data()[i]; }
-    T& back() { return data()[size_ - 1]; }
-    void pop_back() {
-        if (size_ == InlineCapacity + 1) spill_.clear();
-        else if (size_ > InlineCapacity + 1) spill_.pop_back();
-        --size_;
-    }
-    T* begin() { return data(); }
-    T* end() { return data() + size_; }
-    const T* begin() const { return data(); }
-    const T* end() const { return data() + size_; }
+    T* data() { return data_; }
+    const T* data() const { return data_; }
+    T& operator[](std::size_t i) { return data_[i]; }
+    const T& operator[](std::size_t i) const { return data_[i]; }
+    T& back() { return data_[size_ - 1]; }
+    void pop_back() { --size_; }
+    T* begin() { return data_; }
+    T* end() { return data_ + size_; }
+    const T* begin() const { return data_; }
+    const T* end() const { return data_ + size_; }
 
 private:
+    void reserve(std::size_t count) {
+        if (count > capacity_) grow(count);
+    }
+    // Moves the elements to a spill of at least `count` (and twice the old capacity).
+    void grow(std::size_t count) {
+        std::vector<T> larger(std::max(count, 2 * capacity_));
+        std::copy(data_, data_ + size_, larger.begin());
+        spill_.swap(larger);
+        data_ = spill_.data(), capacity_ = spill_.size();
+    }
+
     std::array<T, InlineCapacity> inline_;  // not value-initialised: only [0, size) is ever read
-    std::vector<T> spill_;
+    std::vector<T> spill_;                  // the storage once more than InlineCapacity were held
+    T* data_ = inline_.data();
     std::size_t size_ = 0;
+    std::size_t capacity_ = InlineCapacity;
 };
 
 }  // namespace gdc::detail
