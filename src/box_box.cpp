@@ -176,12 +176,12 @@ void collideBoxBoxInto(const Polytope& a, const Pose& poseA, const Polytope& b, 
     manifold.featureB = selectBoxFeature(directionB, boxSupport(directionB), angularTolerance);
     const BoxFeature featureA = boxFeature(a, manifold.featureA, nullptr);
     const BoxFeature featureB = boxFeature(b, manifold.featureB, &bInA);
-    refineNormal(normal, normalOverlap, view(featureA), view(featureB), pair);
+    const FeatureView viewA = view(featureA), viewB = view(featureB);
+    refineNormal(normal, normalOverlap, viewA, viewB, pair);
 
     // Stage 3: the intersection in the contact plane.
     LiftedPoints kept;
-    intersectFeatures(view(featureA), view(featureB), normal, tolerance, -settings.margin, settings.spanContactRegion,
-                      kept);
+    intersectFeatures(viewA, viewB, normal, tolerance, -settings.margin, settings.spanContactRegion, kept);
     if (kept.empty()) return general();  // its fallbacks: the ray cast's witnesses or the supports' gap
     double deepest = -INFINITY;
     for (const LiftedPoint& point : kept) deepest = std::max(deepest, point.depth);

@@ -18,26 +18,4 @@ Feature selectBoxFeature(const Vec3& direction, const AngularTolerance& toleranc
     return selectBoxFeature(direction, boxSupport(direction), exact);
 }
 
-BoxFeature boxFeature(const Polytope& box, const Feature& feature, const Pose* toCommon) {
-    BoxFeature geometry;
-    geometry.type = feature.type;
-    int storage[2];
-    const int* indices = nullptr;
-    geometry.count = featureVertices(box, feature, &indices, storage);
-    // A's own vertices as they are: the identity pose changes no bit.
-    for (int i = 0; i < geometry.count; ++i)
-        geometry.points[i] = toCommon ? toCommon->apply(box.vertices()[indices[i]]) : box.vertices()[indices[i]];
-    if (feature.type == FeatureType::Face) {
-        const Polytope::Face& face = box.faces()[feature.index];
-        if (toCommon) {
-            geometry.planeNormal = toCommon->rotation * face.normal;
-            geometry.planeOffset = face.offset + geometry.planeNormal.dot(toCommon->position);
-        } else {
-            geometry.planeNormal = face.normal;
-            geometry.planeOffset = face.offset;
-        }
-    }
-    return geometry;
-}
-
 }  // namespace gdc::detail

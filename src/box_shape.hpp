@@ -113,7 +113,28 @@ inline FeatureView view(const BoxFeature& feature) {
 
 /// The geometry of `feature` of `box` mapped by `toCommon` (nullptr: the box's own frame) with the
 /// general pipeline's arithmetic (collide.cpp, featureGeometry: the same Pose::apply of the same
-/// vertices, the same plane), so to the bit.
-BoxFeature boxFeature(const Polytope& box, const Feature& feature, const Pose* toCommon);
+/// vertices, the same plane), so to the bit: A's own vertices as they are (the identity pose
+/// changes no bit). Inline: the box–box path calls it twice, with and without `toCommon`.
+inline BoxFeature boxFeature(const Polytope& box, const Feature& feature, const Pose* toCommon) {
+    BoxFeature geometry;
+    geometry.type = feature.type;
+    int storage[2];
+    const int* indices = nullptr;
+    geometry.count = featureVertices(box, feature, &indices, storage);
+    for (int i = 0; i < geometry.count; ++i)
+        geometry.points[i] = toCommon ? toCommon->apply(box.vertices()[indices[i]]) : box.vertices()[indices[i]];
+    if (feature.type == FeatureType::Face) {
+        const Polytope::Face& face = box.faces()[feature.index];
+        if (toCommon) {
+            geometry.planeNormal = toCommon->rotation * face.normal;
+            geometry.planeOffset = face.offset + geometry.planeNormal.dot(toCommon->position);
+        } else {
+            geometry.planeNormal = face.normal;
+            geometry.planeOffset = face.offset;
+        }
+    }
+    return geometry;
+}
+
 
 }  // namespace gdc::detail

@@ -434,11 +434,12 @@ Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b,
     }
     const FeatureGeometry featureA = featureGeometry(a, manifold.featureA, piecesA, Pose{});
     const FeatureGeometry featureB = featureGeometry(b, manifold.featureB, piecesB, bInA);
-    if (!separatingAxis) refineNormal(normal, normalOverlap, view(featureA), view(featureB), pair);  // SAT's is exact already
+    const FeatureView viewA = view(featureA), viewB = view(featureB);
+    if (!separatingAxis) refineNormal(normal, normalOverlap, viewA, viewB, pair);  // SAT's is exact already
 
     // Stage 3: intersection in the contact plane, each point with its own depth.
-    LiftedPoints kept =
-        intersectFeatures(featureA, featureB, normal, tolerance, -settings.margin, settings.spanContactRegion);
+    LiftedPoints kept;
+    intersectFeatures(viewA, viewB, normal, tolerance, -settings.margin, settings.spanContactRegion, kept);
     // The deepest contact must carry the whole penetration along n — the distance B must move
     // along n to clear A, the exit of the ray along n through A − B (ODE's contract: moving by
     // 0.96·depth still touches, 1.04·depth separates). The intersection misses it when the

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
-#include <vector>
 
 namespace gdc::detail {
 
@@ -15,6 +14,7 @@ public:
     SmallVector() = default;
     SmallVector(const SmallVector& other) { *this = other; }
     SmallVector(SmallVector&& other) noexcept { *this = std::move(other); }
+    ~SmallVector() { release(); }
     SmallVector& operator=(const SmallVector& other) {
         if (this == &other) return *this;
         clear();
@@ -26,12 +26,11 @@ public:
     SmallVector& operator=(SmallVector&& other) noexcept {
         if (this == &other) return *this;
         if (other.data_ == other.inline_.data()) {
+            release();
             std::copy(other.data_, other.data_ + other.size_, inline_.data());
-            spill_.clear();
-            data_ = inline_.data(), capacity_ = InlineCapacity;
         } else {
-            spill_.swap(other.spill_);
-            data_ = spill_.data(), capacity_ = spill_.size();
+            release();
+            data_ = other.data_, capacity_ = other.capacity_;
             other.data_ = other.inline_.data(), other.capacity_ = InlineCapacity;
         }
         size_ = other.size_;
@@ -45,6 +44,15 @@ public:
         data_[size_++] = value;
     }
     void clear() { size_ = 0; }
+    /// Room for `count` elements in all, the ones held kept; returns data(). For a loop that writes
+    /// through the pointer and then calls setSize: it keeps its count in a register, where
+    /// push_back reloads the vector's fields after each element (Eigen's stores may alias them).
+    T* reserve(std::size_t count) {
+        if (count > capacity_) grow(count);
+        return data_;
+    }
+    /// The size after writing through reserve()'s pointer (`count` ≤ the count reserved).
+    void setSize(std::size_t count) { size_ = count; }
     void swap(SmallVector& other) {
         SmallVector temporary(std::move(other));
         other = std::move(*this);
@@ -64,20 +72,22 @@ public:
     const T* end() const { return data_ + size_; }
 
 private:
-    void reserve(std::size_t count) {
-        if (count > capacity_) grow(count);
-    }
     // Moves the elements to a spill of at least `count` (and twice the old capacity).
     void grow(std::size_t count) {
-        std::vector<T> larger(std::max(count, 2 * capacity_));
-        std::copy(data_, data_ + size_, larger.begin());
-        spill_.swap(larger);
-        data_ = spill_.data(), capacity_ = spill_.size();
+        const std::size_t capacity = std::max(count, 2 * capacity_);
+        T* larger = new T[capacity];
+        std::copy(data_, data_ + size_, larger);
+        release();
+        data_ = larger, capacity_ = capacity;
+    }
+    // Back to the inline storage (the elements are not kept).
+    void release() {
+        if (data_ != inline_.data()) delete[] data_;
+        data_ = inline_.data(), capacity_ = InlineCapacity;
     }
 
     std::array<T, InlineCapacity> inline_;  // not value-initialised: only [0, size) is ever read
-    std::vector<T> spill_;                  // the storage once more than InlineCapacity were held
-    T* data_ = inline_.data();
+    T* data_ = inline_.data();  // inline_, or the heap once more than InlineCapacity were held
     std::size_t size_ = 0;
     std::size_t capacity_ = InlineCapacity;
 };
