@@ -4,6 +4,7 @@
 #include <gdcontact/collide.hpp>
 
 #include "box_shape.hpp"
+#include "growth_distance.hpp"
 
 #include <cmath>
 
@@ -14,17 +15,6 @@ namespace gdc::detail {
 /// Gauss map gives each direction at most one face and no face a cap; larger tolerances go to
 /// the general pipeline).
 bool boxBoxApplies(const Polytope& a, const Polytope& b, const Settings& settings);
-
-/// growthDistance's closed form for two boxes (growth_distance.cpp, boxGrowthDistance), bit for
-/// bit: valid, the normal and the face-overlap bound (B at `rotationB`, `centreOffset` = p_B − p_A
-/// of length `separation`, `size` = the sum of the radii).
-struct BoxGrowth {
-    bool valid = false;
-    Vec3 normal = Vec3::UnitZ();
-    double faceOverlapLowerBound = -INFINITY;
-};
-BoxGrowth boxGrowth(const Vec3& halfA, const Vec3& halfB, const Mat3& rotationB, const Vec3& centreOffset,
-                    double separation, double size);
 
 /// The same manifold as collideGeneral (collide_general.hpp) — normal, points, depths, count and
 /// features, to rounding — for a pair boxBoxApplies() accepts: features from the box's Gauss map

@@ -194,6 +194,19 @@ GrowthDistance growthDistance(const Polytope& a, const Polytope& b, const Pose& 
 /// earlier ones (warm start), as do the pair's later searches from these.
 GrowthDistance growthDistance(const MinkowskiDifference& pair, const Settings& settings, bool needWitnesses);
 
+/// growthDistance's closed form for two boxes (what it returns for them, unless asked for
+/// witnesses): valid, the normal, the face-overlap bound and the exit distance h (the growth is
+/// separation / h), for B at `rotationB`, `centreOffset` = p_B − p_A of length `separation`, `size` =
+/// the sum of the radii. The box–box path calls it directly.
+struct BoxGrowth {
+    bool valid = false;
+    Vec3 normal = Vec3::UnitZ();
+    double faceOverlapLowerBound = -INFINITY;
+    double exitDistance = INFINITY;
+};
+BoxGrowth boxGrowth(const Vec3& halfA, const Vec3& halfB, const Mat3& rotationB, const Vec3& centreOffset,
+                    double separation, double size);
+
 /// How far B must move along the unit `normal` (A's frame, from A towards B) to stop overlapping
 /// A: the exit distance t of the ray from the origin along `normal` through A − B, with points of
 /// A and B (A's frame) whose difference is t·normal — the touching pair at that translation.
