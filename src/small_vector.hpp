@@ -14,7 +14,9 @@ public:
     SmallVector() = default;
     SmallVector(const SmallVector& other) { *this = other; }
     SmallVector(SmallVector&& other) noexcept { *this = std::move(other); }
-    ~SmallVector() { release(); }
+    ~SmallVector() {
+        if (data_ != inline_.data()) delete[] data_;
+    }
     SmallVector& operator=(const SmallVector& other) {
         if (this == &other) return *this;
         clear();
