@@ -15,7 +15,8 @@ namespace gdc::detail {
 /// so that a test can prove the two equal.
 Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
                         const Settings& settings, bool alwaysConfirmDepth = false);
-/// Gauss-map feature of A lifted onto the half-space, for any polytope (collide.cpp).
+/// Gauss-map feature of A lifted onto the half-space, for any polytope (half_space.cpp: the
+/// half-space query with the general shape hooks).
 Manifold collideGeneral(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings);
 
 /// How much smaller a face's overlap must be than the growth-distance normal's before the overhang

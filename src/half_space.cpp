@@ -1,11 +1,11 @@
-// The polytope–half-space query without the general machinery where a vertex loop suffices.
-//
-// detail::collideGeneral (collide.cpp) is the reference: this file computes the same numbers by
-// the same floating-point expressions, in the same order, and differs only in what it skips —
-// a box's support and Gauss-map feature in closed form instead of a search over its adjacency, a
-// small hull's depths from one loop over its vertices, a box's angular-tolerance cosine and sine
-// only where a comparison with them is close. The points are ranked (and reduced) by the same
-// emitManifold. tests/half_space_test.cpp runs both on random poses.
+// The polytope–half-space query: the normal is the plane's, A's Gauss-map feature is lifted onto
+// it, written once (Query) and specialised by the shape's hooks for the support, the feature and
+// the depths — a box's closed forms (box_shape.hpp), a small hull's one loop over its vertices
+// (every depth, the support and the early out at once), any polytope's support search and Gauss
+// map (collideGeneral, the reference the other two are tested equal to: tests/half_space_test.cpp
+// runs them on random poses). Every hook computes the same numbers by the same floating-point
+// expressions, so the three return the same Manifold; the points are ranked (and reduced) by
+// emitManifold's rule. collide() dispatches.
 #include "half_space.hpp"
 
 #include "box_shape.hpp"
@@ -13,6 +13,7 @@
 #include "feature_intersection.hpp"
 #include "gauss_map.hpp"
 #include "reduction.hpp"
+#include "small_vector.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -21,7 +22,7 @@
 namespace gdc::detail {
 namespace {
 
-void requireFinite(const Pose& pose) {
+[[gnu::always_inline]] inline void requireFinite(const Pose& pose) {
     if (!pose.isFinite()) throw InvalidInput("the pose of A is not finite");
 }
 
@@ -252,6 +253,29 @@ void collideSmallHull(const Polytope& a, const Pose& poseA, const PlaneInA& plan
                       [&](int v) { return plane.offset - height[v]; }, poseA, manifold);
 }
 
+// Any polytope (the general path): the support by Polytope::supportVertex (the brute force up to
+// Settings::bruteForceSupportLimit vertices, hill climbing over the adjacency above), the feature
+// and its cap by the Gauss map, each depth from the plane where it is needed.
+void collideAnyPolytope(const Polytope& a, const Pose& poseA, const PlaneInA& plane, const Settings& settings,
+                        Manifold& manifold) {
+    const double tolerance = 1e-9 * a.radius();
+    const Query query{a, plane, settings, tolerance, -settings.margin - tolerance};
+    const Vec3 normal = -plane.m;
+    const int deepest = a.supportVertex(normal, settings.bruteForceSupportLimit);
+    const Vec3* vertices = a.vertices().data();
+    if (plane.depthOf(vertices[deepest]) < query.keepDepth) return;
+    // The half-space's Gauss map is the single point −n, so its feature is its plane; A's
+    // feature comes from its Gauss map as usual, and each of its vertices is lifted onto the plane.
+    const AngularTolerance angularTolerance(settings.angularTolerance);
+    manifold.featureA = selectFeature(a, normal, deepest, angularTolerance);
+    manifold.featureB = {FeatureType::Face, 0};
+    SmallVector<int, 8> cap;  // a face's whole cap of near-coplanar faces rests on the plane
+    const bool hasCap = manifold.featureA.type == FeatureType::Face &&
+                        (faceCap(a, manifold.featureA.index, normal, angularTolerance, cap), cap.size() > 1);
+    query.liftFeature(manifold.featureA, deepest, hasCap ? &cap : nullptr,
+                      [&](int v) { return plane.depthOf(vertices[v]); }, poseA, manifold);
+}
+
 }  // namespace
 
 namespace {
@@ -299,7 +323,7 @@ void collideNormalised(const Polytope& a, const Pose& poseA, const UnitHalfSpace
 
 void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings,
                           Manifold& out) {
-    requireFinite(poseA);  // first: a bad pose is reported before a bad plane, as collideGeneral does
+    requireFinite(poseA);  // first: a bad pose is reported before a bad plane
     collideNormalised(a, poseA, normalised(b), settings, out);
 }
 
@@ -307,6 +331,14 @@ void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const UnitHalfSp
                           Manifold& out) {
     requireFinite(poseA);
     collideNormalised(a, poseA, b, settings, out);
+}
+
+Manifold collideGeneral(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings) {
+    requireFinite(poseA);  // first: a bad pose is reported before a bad plane
+    const PlaneInA plane = planeInA(normalised(b), poseA);
+    Manifold manifold;
+    collideAnyPolytope(a, poseA, plane, settings, manifold);
+    return manifold;
 }
 
 Manifold collideHalfSpace(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings) {
