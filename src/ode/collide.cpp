@@ -2,7 +2,11 @@
 #include <gdcontact/ode.hpp>
 
 #include "pair_cache_table.hpp"
-#include "state.hpp"
+#include "box_cache.hpp"
+#include "convex_registry.hpp"
+#include "installed_settings.hpp"
+#include "ode_internals.hpp"
+#include "thread_cache.hpp"
 #include "../box_box.hpp"
 #include "../half_space.hpp"
 
@@ -12,7 +16,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <dlfcn.h>
 #include <exception>
 #include <functional>
 #include <string>
@@ -65,30 +68,9 @@ Pose readPose(dGeomID geom) {
            " (leave that pair to ODE: install() overrides only the supported pairs)");
 }
 
-// ---- dConvex geoms gdcontact does not know: ODE's own collider ----
+// ---- dConvex geoms gdcontact does not know: ODE's own collider (ode_internals.hpp) ----
 //
-// ODE 0.16.2 keeps only pointers to a dConvex's arrays and has no getter for them, and its
-// dxConvex layout is private: gdcontact cannot read a convex it did not create (reading ODE's
-// private struct would tie it to one build of ODE). Such pairs go to the collider ODE's own
-// table holds for them. dSetColliderOverride replaced that table entry and ODE has no getter for
-// it either, but Debian's libode exports the colliders themselves (C++ names, dColliderFn's
-// signature); they are found once with dlsym. Without them (another ODE build) the pair gets no
-// contacts, with a message — never an abort.
-struct OdeColliders {
-    dColliderFn* convexConvex;  // libccd MPR (dLIBCCD_CONVEX_CONVEX)
-    dColliderFn* convexBox;     // libccd MPR (dLIBCCD_CONVEX_BOX)
-    dColliderFn* convexPlane;
-};
-
-const OdeColliders& odeColliders() {
-    static const OdeColliders colliders = [] {
-        auto find = [](const char* name) { return reinterpret_cast<dColliderFn*>(dlsym(RTLD_DEFAULT, name)); };
-        return OdeColliders{find("_Z23dCollideConvexConvexCCDP6dxGeomS0_iP12dContactGeomi"),
-                            find("_Z20dCollideConvexBoxCCDP6dxGeomS0_iP12dContactGeomi"),
-                            find("_Z19dCollideConvexPlaneP6dxGeomS0_iP12dContactGeomi")};
-    }();
-    return colliders;
-}
+// Without them (another ODE build) the pair gets no contacts, with a message — never an abort.
 
 // One message per kind and process: a scene full of plain convexes must not flood the log.
 void sayOnce(std::atomic<bool>& said, const char* message) {
@@ -118,7 +100,7 @@ std::atomic<bool> saidPlainConvex{false}, saidSetConvex{false}, saidNoOdeCollide
 // make ODE abort.
 int collideWithOde(dGeomID o1, int class1, dGeomID o2, int class2, int maxContacts, dContactGeom* contact,
                    int skip) {
-    const OdeColliders& ode = odeColliders();
+    const detail::OdeColliders& ode = detail::odeColliders();
     dColliderFn* function = nullptr;
     bool reverse = false;
     if (class1 == dConvexClass && class2 == dConvexClass) {

@@ -24,7 +24,9 @@
 #include "body_pair.hpp"
 #include "pair_cache_table.hpp"
 #include "space_collide_profile.hpp"
-#include "state.hpp"
+#include "convex_registry.hpp"
+#include "installed_settings.hpp"
+#include "thread_cache.hpp"
 
 #include <algorithm>
 #include <atomic>
