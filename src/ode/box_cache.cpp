@@ -69,6 +69,7 @@ const Polytope& borrowedBoxPolytopeSlow(ThreadCache& cache, double halfX, double
     // The least recently used slot is never one this thread used within the last
     // kBorrowedBoxSizes − 1 lookups, so no reference handed out in that window dangles.
     std::shared_ptr<const Polytope> polytope = boxPolytope(halfX, halfY, halfZ);  // may throw: slot untouched
+    if (cache.pinnedBoxes && oldest->polytope) cache.pinnedBoxes->push_back(oldest->polytope);  // likewise
     oldest->polytope = std::move(polytope);
     oldest->halfExtents[0] = halfX;
     oldest->halfExtents[1] = halfY;

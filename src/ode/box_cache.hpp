@@ -15,7 +15,7 @@ std::shared_ptr<const Polytope> boxPolytope(double halfX, double halfY, double h
 
 /// As boxPolytope, for collide(): borrowed from the thread's cache. The reference stays valid
 /// until this thread has looked up kBorrowedBoxSizes − 1 other sizes, which covers both boxes
-/// of one pair.
+/// of one pair — or, while ThreadCache::pinnedBoxes is set, until that vector is cleared.
 const Polytope& borrowedBoxPolytopeSlow(ThreadCache& cache, double halfX, double halfY, double halfZ);
 inline const Polytope& borrowedBoxPolytope(ThreadCache& cache, double halfX, double halfY, double halfZ) {
     ThreadCache::BoxSlot& last = cache.boxes[cache.lastBox];

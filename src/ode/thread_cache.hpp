@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 namespace gdc::ode::detail {
 
@@ -33,6 +34,10 @@ struct ThreadCache {
     BoxSlot boxes[kBorrowedBoxSizes];
     std::uint64_t boxClock = 0;
     int lastBox = 0;  // checked first: a scene's boxes mostly share a few sizes
+    // While set (spaceCollide, for the pairs it resolved on this thread and collides later), a
+    // box polytope evicted from `boxes` is kept here instead of released: borrowed references
+    // then stay valid until the owner of the vector clears it.
+    std::vector<std::shared_ptr<const Polytope>>* pinnedBoxes = nullptr;
 
     struct PlaneSlot {
         double raw[4] = {NAN, NAN, NAN, NAN};  // a, b, c, d; NaN: never equal, so an empty slot never hits
