@@ -13,6 +13,13 @@
 // prints "calls N" and callgrind prints the collected instruction total ("Collected : I").
 // `dump` gives a byte-exact record of the adapter's answers (order, normal, depth, flags, skip,
 // argument order, misuse excluded) to diff between two versions of the adapter.
+//   ode_adapter_overhead scene THREADS STEPS [jitter]   a running scene through spaceCollide
+//   ode_adapter_overhead scene-dump THREADS STEPS       its contacts, as hex floats
+// `scene` zeroes callgrind's counts after a warm-up step and dumps them (named "scene") after
+// STEPS steps, every thread counted: run it with callgrind collecting from the start, e.g.
+//   valgrind --tool=callgrind ode_adapter_overhead scene 2 20
+// and subtract the same run with `jitter` (the steps' moves without spaceCollide); docs/ode.md,
+// "The hull registry", has the numbers.
 #include <gdcontact/ode.hpp>
 
 #include "ode_support.hpp"
