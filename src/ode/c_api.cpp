@@ -4,7 +4,7 @@
 #include <gdcontact/ode.h>
 #include <gdcontact/ode.hpp>
 
-#include "state.hpp"
+#include "ode_internals.hpp"
 
 #include <exception>
 #include <new>

@@ -2,7 +2,12 @@
 #include <gdcontact/ode.hpp>
 
 #include "pair_cache_table.hpp"
-#include "state.hpp"
+#include "resolved_pair.hpp"
+#include "box_cache.hpp"
+#include "convex_registry.hpp"
+#include "installed_settings.hpp"
+#include "ode_internals.hpp"
+#include "thread_cache.hpp"
 #include "../box_box.hpp"
 #include "../half_space.hpp"
 
@@ -12,7 +17,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <dlfcn.h>
 #include <exception>
 #include <functional>
 #include <string>
@@ -43,13 +47,18 @@ std::shared_ptr<const Polytope> boxPolytopeOf(dGeomID box) {
 }
 
 // poseOf without its checks, for geoms whose class is already known to be placeable: ODE's arrays
-// read straight into the pose the core takes (returned in place, no copy).
-Pose readPose(dGeomID geom) {
+// read straight into the pose the core takes (in place, no copy).
+void readPoseInto(dGeomID geom, Pose& pose) {
     const dReal* p = dGeomGetPosition(geom);
     const dReal* r = dGeomGetRotation(geom);  // a dMatrix3: 3x4 row-major, the fourth column padding
-    Pose pose{Mat3{}, Vec3{p[0], p[1], p[2]}};
+    pose.position = Vec3{p[0], p[1], p[2]};
     for (int row = 0; row < 3; ++row)
         for (int column = 0; column < 3; ++column) pose.rotation(row, column) = r[4 * row + column];
+}
+
+Pose readPose(dGeomID geom) {
+    Pose pose;
+    readPoseInto(geom, pose);
     return pose;
 }
 
@@ -65,30 +74,9 @@ Pose readPose(dGeomID geom) {
            " (leave that pair to ODE: install() overrides only the supported pairs)");
 }
 
-// ---- dConvex geoms gdcontact does not know: ODE's own collider ----
+// ---- dConvex geoms gdcontact does not know: ODE's own collider (ode_internals.hpp) ----
 //
-// ODE 0.16.2 keeps only pointers to a dConvex's arrays and has no getter for them, and its
-// dxConvex layout is private: gdcontact cannot read a convex it did not create (reading ODE's
-// private struct would tie it to one build of ODE). Such pairs go to the collider ODE's own
-// table holds for them. dSetColliderOverride replaced that table entry and ODE has no getter for
-// it either, but Debian's libode exports the colliders themselves (C++ names, dColliderFn's
-// signature); they are found once with dlsym. Without them (another ODE build) the pair gets no
-// contacts, with a message — never an abort.
-struct OdeColliders {
-    dColliderFn* convexConvex;  // libccd MPR (dLIBCCD_CONVEX_CONVEX)
-    dColliderFn* convexBox;     // libccd MPR (dLIBCCD_CONVEX_BOX)
-    dColliderFn* convexPlane;
-};
-
-const OdeColliders& odeColliders() {
-    static const OdeColliders colliders = [] {
-        auto find = [](const char* name) { return reinterpret_cast<dColliderFn*>(dlsym(RTLD_DEFAULT, name)); };
-        return OdeColliders{find("_Z23dCollideConvexConvexCCDP6dxGeomS0_iP12dContactGeomi"),
-                            find("_Z20dCollideConvexBoxCCDP6dxGeomS0_iP12dContactGeomi"),
-                            find("_Z19dCollideConvexPlaneP6dxGeomS0_iP12dContactGeomi")};
-    }();
-    return colliders;
-}
+// Without them (another ODE build) the pair gets no contacts, with a message — never an abort.
 
 // One message per kind and process: a scene full of plain convexes must not flood the log.
 void sayOnce(std::atomic<bool>& said, const char* message) {
@@ -118,7 +106,7 @@ std::atomic<bool> saidPlainConvex{false}, saidSetConvex{false}, saidNoOdeCollide
 // make ODE abort.
 int collideWithOde(dGeomID o1, int class1, dGeomID o2, int class2, int maxContacts, dContactGeom* contact,
                    int skip) {
-    const OdeColliders& ode = odeColliders();
+    const detail::OdeColliders& ode = detail::odeColliders();
     dColliderFn* function = nullptr;
     bool reverse = false;
     if (class1 == dConvexClass && class2 == dConvexClass) {
@@ -202,12 +190,13 @@ bool matchesXExtent(const Polytope& hull, const Pose& pose, dGeomID geom, int br
 }
 
 // The hull of a convex geom at `pose`, or nullptr when gdcontact does not know the geom's shape:
-// a plain dCreateConvex geom, or a createConvex geom given other data by dGeomSetConvex (its
-// AABB, which ODE computes from the points it holds, no longer matches the hull).
-[[gnu::noinline]] const Polytope* knownHull(dGeomID geom, const Pose& pose, const Settings& settings, detail::ThreadCache& cache) {
+// a plain dCreateConvex geom (`unregistered` set), or a createConvex geom given other data by
+// dGeomSetConvex (its AABB, which ODE computes from the points it holds, no longer matches the hull).
+[[gnu::noinline]] const Polytope* knownHull(dGeomID geom, const Pose& pose, const Settings& settings,
+                                            detail::ThreadCache& cache, bool& unregistered) {
     const Polytope* hull = detail::borrowedConvex(cache, geom);
     if (!hull) {
-        reportPlainConvex();
+        unregistered = true;
         return nullptr;
     }
     if (!matchesXExtent(*hull, pose, geom, settings.bruteForceSupportLimit, cache)) {
@@ -223,14 +212,15 @@ bool matchesXExtent(const Polytope& hull, const Pose& pose, dGeomID geom, int br
 // for any other class.
 // Inline: the box case is a getter and the thread cache's compare, less than the call around it.
 [[gnu::always_inline]] inline const Polytope* polytopeFor(dGeomID geom, int geomClass, const Pose& pose,
-                                                          const Settings& settings, detail::ThreadCache& cache) {
+                                                          const Settings& settings, detail::ThreadCache& cache,
+                                                          bool& unregistered) {
     if (geomClass == dBoxClass) {
         dVector3 lengths;
         dGeomBoxGetLengths(geom, lengths);
         return &detail::borrowedBoxPolytope(cache, 0.5 * lengths[0], 0.5 * lengths[1], 0.5 * lengths[2]);
     }
     if (geomClass != dConvexClass) unsupportedClass(geomClass);
-    return knownHull(geom, pose, settings, cache);
+    return knownHull(geom, pose, settings, cache, unregistered);
 }
 
 const detail::ThreadCache::PlaneSlot& planeOf(dGeomID plane, detail::ThreadCache& cache) {
@@ -395,18 +385,52 @@ decltype(auto) collideLimited(const Settings& settings, int maxContacts, Collide
     return collideWith(pairSettings);
 }
 
-int collidePolytopeWithPlane(dGeomID o1, int class1, dGeomID o2, int class2, int maxContacts,
-                             dContactGeom* contact, int skip, const Settings& settings,
-                             detail::ThreadCache& cache, const CacheSource& pairCache) {
-    // The plane is always the core's B; the core's A is o2 when o1 is the plane.
-    const bool planeFirst = class1 == dPlaneClass;
-    if (planeFirst && class2 == dPlaneClass) misuse("gdc::ode::collide: plane–plane is not a supported pair");
-    dGeomID body = planeFirst ? o2 : o1;
-    const Pose pose = readPose(body);
-    const Polytope* known = polytopeFor(body, planeFirst ? class2 : class1, pose, settings, cache);
-    if (!known) return collideWithOde(o1, class1, o2, class2, maxContacts, contact, skip);
-    const Polytope& polytope = *known;
-    const detail::ThreadCache::PlaneSlot& plane = planeOf(planeFirst ? o1 : o2, cache);
+// detail::resolvePair, inlined into gdc::ode::collide's path.
+[[gnu::always_inline]] inline bool resolve(dGeomID o1, int class1, dGeomID o2, int class2, const Settings& settings,
+                                           detail::ThreadCache& cache, detail::ResolvedPair& out) {
+    using Kind = detail::ResolvedPair::Kind;
+    out.o1 = o1;
+    out.o2 = o2;
+    out.class1 = class1;
+    out.class2 = class2;
+    if (class1 == dPlaneClass || class2 == dPlaneClass) {
+        // The plane is always the core's B; the core's A is o2 when o1 is the plane.
+        const bool planeFirst = class1 == dPlaneClass;
+        if (planeFirst && class2 == dPlaneClass) misuse("gdc::ode::collide: plane–plane is not a supported pair");
+        out.flip = planeFirst;
+        dGeomID body = planeFirst ? o2 : o1;
+        readPoseInto(body, out.pose1());
+        bool unregistered = false;
+        out.polytope1 = polytopeFor(body, planeFirst ? class2 : class1, out.pose1(), settings, cache, unregistered);
+        if (!out.polytope1) {
+            out.kind = Kind::Ode;
+            return !unregistered;
+        }
+        out.plane = &planeOf(planeFirst ? o1 : o2, cache);
+        out.kind = Kind::PolytopePlane;
+        return true;
+    }
+    readPoseInto(o1, out.pose1());
+    readPoseInto(o2, out.pose2());
+    bool unregistered = false;
+    out.polytope1 = polytopeFor(o1, class1, out.pose1(), settings, cache, unregistered);
+    out.polytope2 = polytopeFor(o2, class2, out.pose2(), settings, cache, unregistered);
+    if (!out.polytope1 || !out.polytope2) {
+        out.kind = Kind::Ode;
+        return !unregistered;
+    }
+    out.flip = comesFirst(out.pose2().position, o2, out.pose1().position, o1);
+    out.kind = Kind::Polytopes;
+    return true;
+}
+
+[[gnu::always_inline]] inline int collidePolytopeWithPlane(const detail::ResolvedPair& pair, int maxContacts, dContactGeom* contact, int skip,
+                             const Settings& settings, detail::ThreadCache& cache, const CacheSource& pairCache) {
+    const bool planeFirst = pair.flip;
+    dGeomID o1 = pair.o1, o2 = pair.o2;
+    const Polytope& polytope = *pair.polytope1;
+    const Pose& pose = pair.pose1();
+    const detail::ThreadCache::PlaneSlot& plane = *pair.plane;
     const HalfSpace halfSpace{plane.unit, plane.raw[3]};
     const Manifold& manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) -> const Manifold& {
         return queryThrough(
@@ -420,29 +444,14 @@ int collidePolytopeWithPlane(dGeomID o1, int class1, dGeomID o2, int class2, int
                          skip);
 }
 
-int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip,
-                   const Settings& settings, detail::ThreadCache& cache, const CacheSource& pairCache) {
-    const int maxContacts = std::min({flags & 0xffff, settings.maxContacts, kMaxManifoldPoints});
-    if (maxContacts <= 0 || o1 == o2) return 0;
-    if (!o1 || !o2) misuse("gdc::ode::collide got a null geom");
-    if (!contact) misuse("gdc::ode::collide got a null contact array");
-    if (skip < static_cast<int>(sizeof(dContactGeom)))
-        misuse("gdc::ode::collide: skip (" + std::to_string(skip) +
-               ") is smaller than sizeof(dContactGeom)");
-
-    const int class1 = dGeomGetClass(o1);
-    const int class2 = dGeomGetClass(o2);
-    if (class1 == dPlaneClass || class2 == dPlaneClass)
-        return collidePolytopeWithPlane(o1, class1, o2, class2, maxContacts, contact, skip, settings, cache,
-                                        pairCache);
-    const Pose pose1 = readPose(o1);
-    const Pose pose2 = readPose(o2);
-    const Polytope* known1 = polytopeFor(o1, class1, pose1, settings, cache);
-    const Polytope* known2 = polytopeFor(o2, class2, pose2, settings, cache);
-    if (!known1 || !known2) return collideWithOde(o1, class1, o2, class2, maxContacts, contact, skip);
-    const Polytope& polytope1 = *known1;
-    const Polytope& polytope2 = *known2;
-    const bool swapped = comesFirst(pose2.position, o2, pose1.position, o1);
+[[gnu::always_inline]] inline int collidePolytopes(const detail::ResolvedPair& pair, int maxContacts, dContactGeom* contact, int skip,
+                     const Settings& settings, detail::ThreadCache& cache, const CacheSource& pairCache) {
+    dGeomID o1 = pair.o1, o2 = pair.o2;
+    const Polytope& polytope1 = *pair.polytope1;
+    const Polytope& polytope2 = *pair.polytope2;
+    const Pose& pose1 = pair.pose1();
+    const Pose& pose2 = pair.pose2();
+    const bool swapped = pair.flip;
     const Manifold& manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) -> const Manifold& {
         return queryThrough(
             pairCache, o1, o2, cache.scratch,
@@ -460,6 +469,53 @@ int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int
                          settings.contactOrder, o1, o2, contact, skip);
 }
 
+[[gnu::always_inline]] inline int collideResolvedPair(const detail::ResolvedPair& pair, int maxContacts, dContactGeom* contact, int skip,
+                        const Settings& settings, detail::ThreadCache& cache, const CacheSource& pairCache) {
+    switch (pair.kind) {
+        case detail::ResolvedPair::Kind::Polytopes:
+            return collidePolytopes(pair, maxContacts, contact, skip, settings, cache, pairCache);
+        case detail::ResolvedPair::Kind::PolytopePlane:
+            return collidePolytopeWithPlane(pair, maxContacts, contact, skip, settings, cache, pairCache);
+        case detail::ResolvedPair::Kind::Ode: break;
+    }
+    return collideWithOde(pair.o1, pair.class1, pair.o2, pair.class2, maxContacts, contact, skip);
+}
+
+int maxContactsOf(int flags, const Settings& settings) {
+    return std::min({flags & 0xffff, settings.maxContacts, kMaxManifoldPoints});
+}
+
+int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip,
+                   const Settings& settings, detail::ThreadCache& cache, const CacheSource& pairCache) {
+    const int maxContacts = maxContactsOf(flags, settings);
+    if (maxContacts <= 0 || o1 == o2) return 0;
+    if (!o1 || !o2) misuse("gdc::ode::collide got a null geom");
+    if (!contact) misuse("gdc::ode::collide got a null contact array");
+    if (skip < static_cast<int>(sizeof(dContactGeom)))
+        misuse("gdc::ode::collide: skip (" + std::to_string(skip) +
+               ") is smaller than sizeof(dContactGeom)");
+
+    detail::ResolvedPair pair;
+    if (!resolve(o1, dGeomGetClass(o1), o2, dGeomGetClass(o2), settings, cache, pair))
+        reportPlainConvex();  // then collided by ODE's convex collider (kind Ode)
+    return collideResolvedPair(pair, maxContacts, contact, skip, settings, cache, pairCache);
+}
+
+// What no exception may cross: ODE is C. A failure becomes a dMessage and no contacts.
+template <class Body>
+int guarded(Body body) noexcept {
+    try {
+        return body();
+    } catch (const InvalidInput& error) {  // its message already starts with "gdcontact: "
+        dMessage(d_ERR_UNKNOWN, "%s (pair skipped)", error.what());
+    } catch (const std::exception& error) {
+        dMessage(d_ERR_UNKNOWN, "gdcontact: %s (pair skipped)", error.what());
+    } catch (...) {
+        dMessage(d_ERR_UNKNOWN, "gdcontact: unknown failure (pair skipped)");
+    }
+    return 0;
+}
+
 // The installed settings (`settings` null) or the caller's; the pair's cache `given`, or else one
 // from the table when this call can take its lease. ODE is C: no exception may cross back into it.
 int collideGuarded(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip, const Settings* settings,
@@ -473,21 +529,14 @@ int collideGuarded(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int
         } catch (...) {  // a lock failure; the defaults are always valid
         }
     }
-    try {
+    return guarded([&] {
         if (given) return collideChecked(o1, o2, flags, contact, skip, *settings, cache, CacheSource{given, nullptr});
         // The table's switch first: with the cache off, not even the ODE getters of the rule.
         if (!detail::pairCacheTable().enabled() || !detail::pairCacheWorthIt(o1, o2, *settings))
             return collideChecked(o1, o2, flags, contact, skip, *settings, cache, CacheSource{});
         detail::PairCacheTable::Lease lease(detail::pairCacheTable());
         return collideChecked(o1, o2, flags, contact, skip, *settings, cache, CacheSource{nullptr, &lease});
-    } catch (const InvalidInput& error) {  // its message already starts with "gdcontact: "
-        dMessage(d_ERR_UNKNOWN, "%s (pair skipped)", error.what());
-    } catch (const std::exception& error) {
-        dMessage(d_ERR_UNKNOWN, "gdcontact: %s (pair skipped)", error.what());
-    } catch (...) {
-        dMessage(d_ERR_UNKNOWN, "gdcontact: unknown failure (pair skipped)");
-    }
-    return 0;
+    });
 }
 
 int collideInstalled(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip) noexcept {
@@ -495,6 +544,20 @@ int collideInstalled(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, i
 }
 
 }  // namespace
+
+bool detail::resolvePair(dGeomID o1, int class1, dGeomID o2, int class2, const Settings& settings, ThreadCache& cache,
+                         ResolvedPair& out) {
+    return resolve(o1, class1, o2, class2, settings, cache, out);
+}
+
+int detail::collideResolved(const ResolvedPair& pair, int flags, dContactGeom* contact, int skip,
+                            const Settings& settings, ThreadCache& cache, PairCache* pairCache) noexcept {
+    const int maxContacts = maxContactsOf(flags, settings);
+    if (maxContacts <= 0) return 0;
+    return guarded([&] {
+        return collideResolvedPair(pair, maxContacts, contact, skip, settings, cache, CacheSource{pairCache, nullptr});
+    });
+}
 
 int detail::collideWithPairCache(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip,
                                  PairCache* cache) noexcept {

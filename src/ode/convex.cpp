@@ -1,7 +1,7 @@
 // gdc::ode::createConvex / createConvexStrict: dConvex geoms whose hull gdcontact knows.
 #include <gdcontact/ode.hpp>
 
-#include "state.hpp"
+#include "convex_registry.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // The adapter's pair cache table (pair_cache_table.hpp).
 #include "pair_cache_table.hpp"
 
-#include "state.hpp"
+#include "free_hook.hpp"
 
 #include <algorithm>
 #include <functional>

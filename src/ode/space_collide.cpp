@@ -23,8 +23,11 @@
 
 #include "body_pair.hpp"
 #include "pair_cache_table.hpp"
+#include "resolved_pair.hpp"
 #include "space_collide_profile.hpp"
-#include "state.hpp"
+#include "convex_registry.hpp"
+#include "installed_settings.hpp"
+#include "thread_cache.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -213,8 +216,9 @@ constexpr std::size_t kFirstBlock = 1024;
 constexpr int kBlocks = 40;  // kFirstBlock · (2^40 − 1) pairs: more than memory holds
 
 struct Slot {
-    dGeomID o1;
-    dGeomID o2;
+    // Resolved once, by the broad phase's thread (addPair); read by the thread colliding the pair.
+    detail::ResolvedPair pair;
+    detail::ThreadCache::PlaneSlot plane;  // the pair's plane, copied from the resolving thread's cache
     // Contacts found, stored (release) by the thread that collided the pair; −1 until then. The
     // handler loop reads it (acquire) to know the pair's contacts are there.
     std::atomic<int> count;
@@ -257,6 +261,9 @@ struct Scratch {
     } packed;
     std::size_t gdcontactPairs = 0;
     bool inUse = false;
+    // Box polytopes the calling thread's cache evicted during this call (ThreadCache::pinnedBoxes):
+    // resolved pairs may still point at them until the pool has collided them.
+    std::vector<std::shared_ptr<const Polytope>> pinnedBoxes;
 
     // The per-body-pair budget (Settings::maxBodyPairContacts): pairs between the same two bodies,
     // linked in the broad phase's order. For pair i: the first pair of its body pair when that body
@@ -329,6 +336,7 @@ struct Call {
     int maxContacts;  // the caller's maxContactsPerPair
     int slotSize;     // contacts kept per gdcontact pair: min(maxContacts, kMaxManifoldPoints)
     detail::ThreadCache& cache;
+    const Settings& settings;  // the installed settings, read once for the call
     Job& job;  // publishes each gdcontact pair to the pool as soon as it is listed
     bool serial;  // no pool: collide each gdcontact pair at once, as a near callback would
     std::exception_ptr failure;  // thrown inside ODE's broad phase, rethrown after it
@@ -339,52 +347,57 @@ struct Call {
     std::size_t serialGdcontactPairs = 0;       // profiling, serial: how many
 };
 
-// Box, createConvex convex or plane (not plane–plane): the pairs collide() handles.
-bool isGdcontactGeom(dGeomID geom, int geomClass, detail::ThreadCache& cache) {
-    if (geomClass == dBoxClass || geomClass == dPlaneClass) return true;
-    return geomClass == dConvexClass && detail::borrowedConvex(cache, geom) != nullptr;
+// Box, convex or plane (not plane–plane): the classes collide() handles.
+bool isGdcontactClass(int geomClass) {
+    return geomClass == dBoxClass || geomClass == dPlaneClass || geomClass == dConvexClass;
 }
 
 void addPair(Call& call, dGeomID o1, dGeomID o2) {
     const int class1 = dGeomGetClass(o1);
     const int class2 = dGeomGetClass(o2);
     Scratch& scratch = call.scratch;
-    const bool ours = !(class1 == dPlaneClass && class2 == dPlaneClass) &&
-                      isGdcontactGeom(o1, class1, call.cache) && isGdcontactGeom(o2, class2, call.cache);
-    if (ours && !call.serial) {
-        // Settles the geoms' world poses here, on the calling thread (dGeomGetPosition recomputes a
-        // stale one), so that the workers only read them. The broad phase has normally done it.
-        if (class1 != dPlaneClass) dGeomGetPosition(o1);
-        if (class2 != dPlaneClass) dGeomGetPosition(o2);
+    const bool ourClasses =
+        !(class1 == dPlaneClass && class2 == dPlaneClass) && isGdcontactClass(class1) && isGdcontactClass(class2);
+    if (ourClasses && !call.serial) {
+        // Resolved here, once, on the calling thread: ODE's getters recompute a stale world pose
+        // here (the broad phase has normally done it), so the workers read only the resolved pair.
         const std::size_t index = scratch.gdcontactPairs;
-        scratch.pairs.push_back(Pair{o1, o2, index, 0, true});  // may throw: before publishing
         dContactGeom* contacts;
-        Slot& slot = scratch.slotFor(index, call.slotSize, contacts);
-        slot.o1 = o1;
-        slot.o2 = o2;
-        slot.count.store(-1, std::memory_order_relaxed);  // published by Job::ready (release)
-        slot.cache = call.pairCache && detail::pairCacheWorthIt(o1, o2, detail::installedSettings(call.cache))
-                         ? call.pairCache.find(o1, o2)
-                         : nullptr;
-        scratch.gdcontactPairs = index + 1;
-        call.job.ready(index + 1);
-        return;
+        Slot& slot = scratch.slotFor(index, call.slotSize, contacts);  // may throw: before publishing
+        // False: a convex gdcontact did not create, ODE's pair (dCollide, below).
+        if (detail::resolvePair(o1, class1, o2, class2, call.settings, call.cache, slot.pair)) {
+            if (slot.pair.plane) {
+                slot.plane = *slot.pair.plane;
+                slot.pair.plane = &slot.plane;
+            }
+            scratch.pairs.push_back(Pair{o1, o2, index, 0, true});  // may throw: before publishing
+            slot.count.store(-1, std::memory_order_relaxed);  // published by Job::ready (release)
+            slot.cache = call.pairCache && detail::pairCacheWorthIt(o1, o2, call.settings) ? call.pairCache.find(o1, o2)
+                                                                                          : nullptr;
+            scratch.gdcontactPairs = index + 1;
+            call.job.ready(index + 1);
+            return;
+        }
     }
     // ODE's own collider as a near callback would call it (or, when serial, gdcontact's), here and
     // now on the calling thread, the contacts packed one pair after the other.
+    detail::ResolvedPair resolved;
+    const bool ours = ourClasses && call.serial &&
+                      detail::resolvePair(o1, class1, o2, class2, call.settings, call.cache, resolved);
     const int room = ours ? call.slotSize : call.maxContacts;
     dContactGeom* out = scratch.packed.reserve(static_cast<std::size_t>(room));
-    PairCache* cache = ours && call.pairCache && detail::pairCacheWorthIt(o1, o2, detail::installedSettings(call.cache))
+    PairCache* cache = ours && call.pairCache && detail::pairCacheWorthIt(o1, o2, call.settings)
                            ? call.pairCache.find(o1, o2)
                            : nullptr;
     int count;
     if (ours && call.serialNarrowNanos) {
         const auto start = ProfileClock::now();
-        count = detail::collideWithPairCache(o1, o2, room, out, sizeof(dContactGeom), cache);
+        count = detail::collideResolved(resolved, room, out, sizeof(dContactGeom), call.settings, call.cache, cache);
         *call.serialNarrowNanos += nanosSince(start);
         ++call.serialGdcontactPairs;
     } else {
-        count = ours ? detail::collideWithPairCache(o1, o2, room, out, sizeof(dContactGeom), cache)  // never throws
+        count = ours ? detail::collideResolved(resolved, room, out, sizeof(dContactGeom), call.settings, call.cache,
+                                               cache)  // never throws
                      : dCollide(o1, o2, room, out, sizeof(dContactGeom));
     }
     if (cache) call.pairCache.count(*cache);
@@ -413,6 +426,7 @@ void nearCallback(void* data, dGeomID o1, dGeomID o2) {
 struct NarrowPhase {
     Scratch* scratch = nullptr;
     int slotSize = 0;
+    const Settings* settings = nullptr;
     // Profiling only (collideRangeProfiled):
     std::atomic<std::int64_t> narrowNanos{0};  // summed over the threads
     std::thread::id caller;
@@ -427,10 +441,10 @@ void collideRange(void* context, std::size_t begin, std::size_t end) {
         std::size_t offset;
         SlotBlock& block = phase.scratch->blocks[blockOf(i, offset)];
         Slot& slot = block.slots[offset];
-        // collide() never throws: a failure becomes a dMessage and 0 contacts.
-        const int count = detail::collideWithPairCache(
-            slot.o1, slot.o2, phase.slotSize, block.contacts.get() + offset * static_cast<std::size_t>(phase.slotSize),
-            sizeof(dContactGeom), slot.cache);
+        // Never throws: a failure becomes a dMessage and 0 contacts.
+        const int count = detail::collideResolved(
+            slot.pair, phase.slotSize, block.contacts.get() + offset * static_cast<std::size_t>(phase.slotSize),
+            sizeof(dContactGeom), *phase.settings, detail::threadCache(), slot.cache);
         slot.count.store(count, std::memory_order_release);
     }
 }
@@ -456,6 +470,8 @@ void collideRangeProfiled(void* context, std::size_t begin, std::size_t end) {
 struct ScratchLease {
     Scratch* scratch;
     Scratch* owned = nullptr;
+    detail::ThreadCache& cache = detail::threadCache();
+    std::vector<std::shared_ptr<const Polytope>>* pinnedBefore = nullptr;
     ScratchLease() {
         thread_local Scratch mine;
         if (mine.inUse) {
@@ -468,8 +484,18 @@ struct ScratchLease {
         scratch->pairs.clear();
         scratch->packed.size = 0;
         scratch->gdcontactPairs = 0;
+        scratch->pinnedBoxes.clear();
+        // Until this call ends, box polytopes the calling thread's cache evicts are kept.
+        pinnedBefore = cache.pinnedBoxes;
+        cache.pinnedBoxes = &scratch->pinnedBoxes;
     }
     ~ScratchLease() {
+        // A call made from a handler hands its pins to the call around it, whose pool may still
+        // be colliding pairs resolved with the boxes this call's lookups evicted.
+        cache.pinnedBoxes = pinnedBefore;
+        if (pinnedBefore)
+            for (auto& box : scratch->pinnedBoxes) pinnedBefore->push_back(std::move(box));  // (bad_alloc: terminate)
+        scratch->pinnedBoxes.clear();
         scratch->inUse = false;
         delete owned;
     }
@@ -525,7 +551,10 @@ void spaceCollide(dSpaceID space, int maxContactsPerPair, void* data, ContactHan
     } poolHeld{holdingPool, parallel};
     if (parallel) holdingPool = true;
     detail::PairCacheTable::Lease pairCache(detail::pairCacheTable());
-    Call call{scratch, maxContactsPerPair, slotSize, detail::threadCache(), job, !parallel, nullptr, pairCache};
+    // The installed settings, once for the call: every pair of a step is collided with the same.
+    const Settings settings = detail::installedSettings(lease.cache);
+    phase.settings = &settings;
+    Call call{scratch, maxContactsPerPair, slotSize, lease.cache, settings, job, !parallel, nullptr, pairCache};
     std::int64_t serialNarrowNanos = 0;
     if (profile && !parallel) call.serialNarrowNanos = &serialNarrowNanos;
 
@@ -576,7 +605,6 @@ void spaceCollide(dSpaceID space, int maxContactsPerPair, void* data, ContactHan
     // contacts are reduced together (on this thread, in the broad phase's order of the pairs, so
     // the result does not depend on the thread count) when the first of those pairs is handed
     // over; each pair then keeps its survivors, compacted in its own contacts.
-    const Settings settings = detail::installedSettings(call.cache);
     const bool bodyPairBudget = settings.maxBodyPairContacts > 0 && scratch.linkBodyPairs();
     auto reduceBodyPair = [&](int head) {
         scratch.bodyPairContacts.clear();

@@ -13,6 +13,13 @@
 // prints "calls N" and callgrind prints the collected instruction total ("Collected : I").
 // `dump` gives a byte-exact record of the adapter's answers (order, normal, depth, flags, skip,
 // argument order, misuse excluded) to diff between two versions of the adapter.
+//   ode_adapter_overhead scene THREADS STEPS [jitter]   a running scene through spaceCollide
+//   ode_adapter_overhead scene-dump THREADS STEPS       its contacts, as hex floats
+// `scene` zeroes callgrind's counts after a warm-up step and dumps them (named "scene") after
+// STEPS steps, every thread counted: run it with callgrind collecting from the start, e.g.
+//   valgrind --tool=callgrind ode_adapter_overhead scene 2 20
+// and subtract the same run with `jitter` (the steps' moves without spaceCollide); docs/ode.md,
+// "The hull registry", has the numbers.
 #include <gdcontact/ode.hpp>
 
 #include "ode_support.hpp"
@@ -242,15 +249,125 @@ int dump(int poses) {
     return 0;
 }
 
+// ---- A running scene through gdc::ode::spaceCollide ----
+//
+// 96 geoms (boxes of two sizes, a cube hull and a 12-point hull made with createConvex), each on
+// its own body, in three loose layers over a ground plane in a hash space: box–box, box–hull,
+// hull–hull, box–plane and hull–plane pairs, touching and separated. Every step moves each body
+// to a fresh random pose near its place (the same sequence for a given seed).
+struct Scene {
+    dWorldID world = dWorldCreate();
+    dSpaceID space = dHashSpaceCreate(0);
+    std::vector<dBodyID> bodies;
+    std::vector<Vec3> homes;
+    std::mt19937_64 random;
+
+    explicit Scene(std::uint64_t seed) : random(seed) {
+        dCreatePlane(space, 0, 0, 1, 0);
+        static const std::vector<dReal> cubeCorners = boxCorners(Vec3::Constant(0.35));
+        static const std::vector<dReal> cloud = [] {
+            std::mt19937_64 r(7);
+            std::uniform_real_distribution<double> u(-0.4, 0.4);
+            std::vector<dReal> points;
+            for (int i = 0; i < 3 * 12; ++i) points.push_back(u(r));
+            return points;
+        }();
+        for (int i = 0; i < 96; ++i) {
+            dGeomID geom;
+            switch (i % 4) {
+                case 0: geom = dCreateBox(space, 0.8, 0.6, 0.5); break;
+                case 1: geom = dCreateBox(space, 0.7, 0.7, 0.7); break;
+                case 2: geom = gdc::ode::createConvex(space, cubeCorners.data(), 8); break;
+                default: geom = gdc::ode::createConvex(space, cloud.data(), 12); break;
+            }
+            dBodyID body = dBodyCreate(world);
+            dGeomSetBody(geom, body);
+            bodies.push_back(body);
+            homes.emplace_back(0.8 * (i % 8), 0.8 * ((i / 8) % 4), 0.32 + 0.75 * (i / 32));
+        }
+        move();
+    }
+    ~Scene() {
+        dSpaceDestroy(space);
+        dWorldDestroy(world);
+    }
+    void move() {
+        std::uniform_real_distribution<double> centimetre(-0.05, 0.05);
+        for (std::size_t i = 0; i < bodies.size(); ++i) {
+            const Mat3 rotation = randomRotation(random);
+            dMatrix3 r;
+            for (int row = 0; row < 3; ++row) {
+                for (int column = 0; column < 3; ++column) r[4 * row + column] = rotation(row, column);
+                r[4 * row + 3] = 0;
+            }
+            const Vec3 p = homes[i] + Vec3(centimetre(random), centimetre(random), centimetre(random));
+            dBodySetPosition(bodies[i], p.x(), p.y(), p.z());
+            dBodySetRotation(bodies[i], r);
+        }
+    }
+};
+
+struct SceneCount {
+    long long pairs = 0, contacts = 0;
+    bool print = false;
+};
+
+void countContacts(void* data, dGeomID, dGeomID, dContactGeom* contacts, int count) {
+    SceneCount& total = *static_cast<SceneCount*>(data);
+    ++total.pairs;
+    total.contacts += count;
+    if (total.print)
+        for (int k = 0; k < count; ++k) print(contacts[k], contacts[k].g1, contacts[k].g2);
+}
+
+// `scene THREADS STEPS [jitter]`: callgrind's counts (all threads: run with --collect-atstart=yes)
+// are zeroed after a warm-up step and dumped after STEPS steps; `jitter` runs the same steps
+// without spaceCollide (the cost of moving the bodies, to subtract).
+int sceneSteps(int threads, int steps, bool jitterOnly) {
+    gdc::ode::setThreadCount(threads);
+    Scene scene(11);
+    SceneCount total;
+    gdc::ode::spaceCollide(scene.space, 16, &total, &countContacts);  // warm: caches and pool
+    total = SceneCount{};
+    CALLGRIND_ZERO_STATS;
+    for (int step = 0; step < steps; ++step) {
+        scene.move();
+        if (!jitterOnly) gdc::ode::spaceCollide(scene.space, 16, &total, &countContacts);
+    }
+    CALLGRIND_DUMP_STATS_AT("scene");
+    std::printf("scene threads %d steps %d touching pairs/step %.1f contacts/step %.1f\n", threads, steps,
+                static_cast<double>(total.pairs) / steps, static_cast<double>(total.contacts) / steps);
+    return 0;
+}
+
+// `scene-dump THREADS STEPS`: every contact spaceCollide hands over, as hex floats, to diff
+// between two versions of the adapter.
+int sceneDump(int threads, int steps) {
+    gdc::ode::setThreadCount(threads);
+    Scene scene(12);
+    SceneCount total;
+    total.print = true;
+    for (int step = 0; step < steps; ++step) {
+        scene.move();
+        std::printf("step %d\n", step);
+        gdc::ode::spaceCollide(scene.space, 16, &total, &countContacts);
+    }
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     dInitODE2(0);
     gdc::ode::install(overheadSettings());
     if (argc >= 2 && std::string(argv[1]) == "dump") return dump(argc > 2 ? std::atoi(argv[2]) : 2000);
+    if (argc >= 4 && std::string(argv[1]) == "scene")
+        return sceneSteps(std::atoi(argv[2]), std::atoi(argv[3]), argc > 4 && std::string(argv[4]) == "jitter");
+    if (argc >= 4 && std::string(argv[1]) == "scene-dump") return sceneDump(std::atoi(argv[2]), std::atoi(argv[3]));
     if (argc < 3) {
         std::fprintf(stderr,
-                     "usage: ode_adapter_overhead CASE adapter|core [ROUNDS] | dump [POSES]\n"
+                     "usage: ode_adapter_overhead CASE adapter|core [ROUNDS] | dump [POSES] | scene THREADS STEPS [jitter]"
+                     " | scene-dump THREADS STEPS\n"
                      "cases: box_box box_plane hull_plane hull_hull box_box_separated hull_scene_2000\n");
         return 2;
     }

@@ -1,0 +1,112 @@
+// What one thread keeps so that collide() neither locks nor writes shared memory in the common
+// case: the box polytopes and planes it met last, where it found each hull's AABB extremes, its
+// copy of the installed settings, and a scratch manifold. The lookups that fill it live with what
+// they look up (box_cache, installed_settings, convex_registry); the plane cache is here, since it
+// has no shared side.
+#pragma once
+
+#include <gdcontact/manifold.hpp>
+#include <gdcontact/polytope.hpp>
+#include <gdcontact/settings.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace gdc::ode::detail {
+
+/// Box sizes a thread keeps at once (least recently used evicted).
+constexpr int kBorrowedBoxSizes = 8;
+static_assert(kBorrowedBoxSizes >= 3, "one pair's two boxes must both survive the second lookup");
+
+/// Get it with threadCache(); the lookups take it so that one call reaches it once.
+struct ThreadCache {
+    ThreadCache() = default;
+    ThreadCache(const ThreadCache&) = delete;
+    ThreadCache& operator=(const ThreadCache&) = delete;
+
+    struct BoxSlot {
+        double halfExtents[3] = {NAN, NAN, NAN};    // NaN: never equal, so an empty slot never hits
+        std::shared_ptr<const Polytope> polytope;  // keeps the borrowed polytope alive
+        std::uint64_t lastUse = 0;
+    };
+    BoxSlot boxes[kBorrowedBoxSizes];
+    std::uint64_t boxClock = 0;
+    int lastBox = 0;  // checked first: a scene's boxes mostly share a few sizes
+    // While set (spaceCollide, for the pairs it resolved on this thread and collides later), a
+    // box polytope evicted from `boxes` is kept here instead of released: borrowed references
+    // then stay valid until the owner of the vector clears it.
+    std::vector<std::shared_ptr<const Polytope>>* pinnedBoxes = nullptr;
+
+    struct PlaneSlot {
+        double raw[4] = {NAN, NAN, NAN, NAN};  // a, b, c, d; NaN: never equal, so an empty slot never hits
+        Vec3 unit = Vec3::Zero();              // (a, b, c) normalised: the HalfSpace the core is given
+        // The core's own normalisation of that half-space (normaliseHalfSpace, half_space.hpp),
+        // made once per plane instead of per call; false where it refuses the plane (then every
+        // call takes the core's full path, which says why).
+        bool normalised = false;
+        Vec3 normalisedNormal = Vec3::Zero();
+        double normalisedOffset = 0;
+    };
+    static constexpr int kPlaneSlots = 4;
+    PlaneSlot planes[kPlaneSlots];
+    int lastPlane = 0;  // also the next slot to refill (round robin)
+
+    // Where the x-extent check of a convex's AABB (collide.cpp) found the hull's extreme vertices
+    // last time, per geom (direct-mapped by address): the next check climbs from there, a few
+    // steps for a body that moved a little. Only a hint: a stale entry costs a longer climb.
+    // With it, the inputs of the last check that passed (the hull, the bytes of the pose's first
+    // rotation row and position, and of the AABB's x extent): the check is a function of exactly
+    // these, so the same inputs pass again without the support queries — a geom in several pairs
+    // of a step is checked once (verifiedHull null: nothing verified). Valid only while no
+    // registered convex has been forgotten since (convexesForgotten): a new geom and hull may take
+    // a freed one's addresses.
+    struct AabbHint {
+        const void* geom = nullptr;
+        int lower = -1;
+        int upper = -1;
+        const Polytope* verifiedHull = nullptr;
+        std::uint64_t verifiedGeneration = 0;
+        double verifiedInputs[8] = {};
+    };
+    static constexpr int kAabbHints = 256;  // 22 KB a thread; at 64, 16 geoms already evicted each other
+    AabbHint aabbHints[kAabbHints];
+
+    // The hull the registry gave for a geom (direct-mapped by address), while no registered convex
+    // has been forgotten or distrusted since (convexesForgotten): then the geom at that address is
+    // still the one registered with that hull, and collide() takes no lock (convex_registry.cpp).
+    struct HullMemo {
+        const void* geom = nullptr;
+        const Polytope* hull = nullptr;
+        std::uint64_t generation = 0;
+    };
+    static constexpr int kHullMemos = 256;
+    HullMemo hulls[kHullMemos];
+
+    std::uint64_t settingsGeneration = 0;  // 0: never copied
+    Settings settings;
+
+    // Where collide() keeps an answer that is not in a pair cache (no cache, or a carried one)
+    // until it is written out: one per thread, so that a call constructs no 0.6 KB Manifold.
+    Manifold scratch;
+};
+
+inline ThreadCache& threadCache() {
+    thread_local ThreadCache cache;
+    return cache;
+}
+
+/// The plane a·x + b·y + c·z = d as the core takes it — (a, b, c) scaled to unit length exactly as
+/// Vec3(a, b, c).normalized() gives it, and the core's normalisation of that half-space —
+/// remembered for the thread's last few planes: a scene has few planes, and the square roots and
+/// divisions in a chain were a fifth of a cheap box–plane call's time. Valid until this thread
+/// looks up kPlaneSlots other planes.
+const ThreadCache::PlaneSlot& planeSlotSlow(ThreadCache& cache, double a, double b, double c, double d);
+inline const ThreadCache::PlaneSlot& planeSlot(ThreadCache& cache, double a, double b, double c, double d) {
+    const ThreadCache::PlaneSlot& last = cache.planes[cache.lastPlane];
+    if (last.raw[0] == a && last.raw[1] == b && last.raw[2] == c && last.raw[3] == d) return last;
+    return planeSlotSlow(cache, a, b, c, d);
+}
+
+}  // namespace gdc::ode::detail
