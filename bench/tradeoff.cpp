@@ -19,7 +19,7 @@
 #include "ode_shapes.hpp"
 #include "reference.hpp"
 
-#include "growth_distance.hpp"  // stage 1 alone (internal header of the core, as its tests use it)
+#include "geometry/growth_distance.hpp"  // stage 1 alone (internal header of the core, as its tests use it)
 
 #include <gdcontact/collide.hpp>
 #include <gdcontact/ode.hpp>

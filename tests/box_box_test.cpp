@@ -2,12 +2,12 @@
 // same manifold — normal, points, depths, count, features — on random poses of every kind of box
 // pair, and pinned cases where the two could part (a face exactly at the angular tolerance, a
 // very thin box, exactly touching boxes, coincident centres).
-#include "box_box.hpp"
+#include "contact/box_box.hpp"
 #include "box_growth_reference.hpp"
-#include "collide_general.hpp"
+#include "contact/collide_general.hpp"
 #include "contact_checks.hpp"
-#include "growth_distance.hpp"
-#include "minkowski.hpp"
+#include "geometry/growth_distance.hpp"
+#include "geometry/minkowski.hpp"
 
 #include <cstdio>
 #include <random>

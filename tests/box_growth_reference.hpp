@@ -3,7 +3,7 @@
 // reference that tests/box_box_test.cpp compares detail::boxGrowth with, bit for bit.
 #pragma once
 
-#include "growth_distance.hpp"
+#include "geometry/growth_distance.hpp"
 
 #include <cmath>
 

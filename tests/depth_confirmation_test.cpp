@@ -2,8 +2,8 @@
 // the normal only where that cast could not have added a point. Proven here the way every faster
 // path is: the pipeline with the certificate and the pipeline that always casts, on 10^5 random
 // poses of each pair type, give the same manifold.
-#include "collide_general.hpp"
-#include "growth_distance.hpp"
+#include "contact/collide_general.hpp"
+#include "geometry/growth_distance.hpp"
 #include "contact_checks.hpp"
 #include "sanitizer_scale.hpp"
 

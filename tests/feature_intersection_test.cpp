@@ -1,6 +1,6 @@
 // Stage 3: feature intersection in the contact plane against brute-force polygon intersection,
 // and each point's own depth against the analytic heights of tilted planes.
-#include "feature_intersection.hpp"
+#include "contact/feature_intersection.hpp"
 #include "geometry_oracles.hpp"
 
 #include <catch2/catch.hpp>

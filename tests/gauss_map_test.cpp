@@ -1,5 +1,5 @@
 // Stage 2: Gauss-map feature selection with its angular tolerance and face > edge > vertex precedence.
-#include "gauss_map.hpp"
+#include "contact/gauss_map.hpp"
 #include "geometry_oracles.hpp"
 
 #include <algorithm>

@@ -1,7 +1,7 @@
 // Stage 1: the growth distance and its normal against analytic answers, and its pitfalls:
 // coincident contraction points, grazing rays, deep overlap with the centres crossed.
 #include "geometry_oracles.hpp"
-#include "growth_distance.hpp"
+#include "geometry/growth_distance.hpp"
 
 #include <catch2/catch.hpp>
 

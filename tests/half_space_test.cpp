@@ -1,12 +1,12 @@
-// The polytope–half-space specialised path (src/half_space.cpp) against the general one
+// The polytope–half-space specialised path (src/contact/half_space.cpp) against the general one
 // (detail::collideGeneral): the same Manifold — normal, points in order, depths, count, features —
 // on random poses of boxes and hulls, and the same errors; pinned where the two could part (a face
 // tilted exactly at the angular tolerance, an exact touch, a box with one tiny extent), and the
 // box layout the closed form relies on.
-#include "collide_general.hpp"
-#include "gauss_map.hpp"
+#include "contact/collide_general.hpp"
+#include "contact/gauss_map.hpp"
 #include "geometry_oracles.hpp"
-#include "half_space.hpp"
+#include "contact/half_space.hpp"
 
 #include <catch2/catch.hpp>
 

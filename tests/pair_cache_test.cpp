@@ -3,7 +3,7 @@
 // answers bit for bit what a fresh query answers, and skips the query exactly when nothing moved;
 // with Settings::manifoldReuseDistance its carried answers stay within that distance of a fresh
 // query, and only while the pair has moved less than that.
-#include "growth_distance.hpp"
+#include "geometry/growth_distance.hpp"
 #include "geometry_oracles.hpp"
 #include "sanitizer_scale.hpp"
 

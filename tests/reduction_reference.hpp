@@ -3,7 +3,7 @@
 // ranking with: the same indices in the same order on random polygons and resting poses.
 #pragma once
 
-#include "reduction.hpp"
+#include "contact/reduction.hpp"
 
 #include <algorithm>
 #include <array>

@@ -3,7 +3,7 @@
 // fraction of the best subset of its size (a brute-force oracle), the swapped call giving the
 // mirrored set, the same points under tiny perturbations, and the centroid rule.
 #include "geometry_oracles.hpp"
-#include "reduction.hpp"
+#include "contact/reduction.hpp"
 #include "reduction_reference.hpp"
 
 #include <gdcontact/gdcontact.hpp>

@@ -8,8 +8,8 @@
 #include "installed_settings.hpp"
 #include "ode_internals.hpp"
 #include "thread_cache.hpp"
-#include "../box_box.hpp"
-#include "../half_space.hpp"
+#include "contact/box_box.hpp"
+#include "contact/half_space.hpp"
 
 #include <algorithm>
 #include <array>

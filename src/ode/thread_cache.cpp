@@ -1,6 +1,6 @@
 #include "thread_cache.hpp"
 
-#include "../half_space.hpp"
+#include "contact/half_space.hpp"
 
 namespace gdc::ode::detail {
 

@@ -19,7 +19,7 @@
 // - Touching: the reference's minimum translational distance decides "must have contacts"
 //   (> kPositionTolerance) and "must have none" (< −kPositionTolerance); between, either answer.
 // - The deepest point carries the penetration along the returned normal within 1 % + tolerance:
-//   the collider's stated contract (the depth confirmation's kDepthSlack, src/collide.cpp; ODE's
+//   the collider's stated contract (the depth confirmation's kDepthSlack, src/contact/collide.cpp; ODE's
 //   own test moves by 0.96 and 1.04 of the depth).
 // - Mirror: collide(B, A) gives the normal negated within 1e-6 rad and the same deepest depth within
 //   kPositionTolerance; whether the point sets coincide is counted (see checkMirror).

@@ -4,7 +4,7 @@
 // brute-force oracles of robustness_support.hpp.
 #include "robustness_support.hpp"
 
-#include "growth_distance.hpp"  // the paper's stage-1 normal alone, for the overhang case
+#include "geometry/growth_distance.hpp"  // the paper's stage-1 normal alone, for the overhang case
 
 #include <catch2/catch.hpp>
 

@@ -145,7 +145,7 @@ TEST_CASE("the composites heap under dWorldStep: no LCP internal error, no tunne
     // composites moving together ("LCP internal error, s <= 0", every step, the pair falling
     // through the floor): budget 4 seeds 10 and 28 (1 and 3 messages), budget 3 seed 8 (tunnelled,
     // 192 messages), budget 6 seed 2 (tunnelled, 152). The body-pair budget leaves touching points
-    // out where their cluster overlaps (src/body_pair_reduction.cpp).
+    // out where their cluster overlaps (src/contact/body_pair_reduction.cpp).
     gdc::testing::OdeSession session;
     ss::installMessageCounter();
     const ss::SceneSpec& spec = ss::findScene("composites");

@@ -1,6 +1,6 @@
-#include "growth_distance.hpp"
+#include "geometry/growth_distance.hpp"
 
-#include "minkowski.hpp"
+#include "geometry/minkowski.hpp"
 
 #include <algorithm>
 #include <cmath>

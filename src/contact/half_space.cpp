@@ -6,14 +6,14 @@
 // runs them on random poses). Every hook computes the same numbers by the same floating-point
 // expressions, so the three return the same Manifold; the points are ranked (and reduced) by
 // emitManifold's rule. collide() dispatches.
-#include "half_space.hpp"
+#include "contact/half_space.hpp"
 
-#include "box_shape.hpp"
-#include "collide_general.hpp"
-#include "feature_intersection.hpp"
-#include "gauss_map.hpp"
-#include "reduction.hpp"
-#include "small_vector.hpp"
+#include "geometry/box_shape.hpp"
+#include "contact/collide_general.hpp"
+#include "contact/feature_intersection.hpp"
+#include "contact/gauss_map.hpp"
+#include "contact/reduction.hpp"
+#include "geometry/small_vector.hpp"
 
 #include <algorithm>
 #include <cmath>

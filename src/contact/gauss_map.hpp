@@ -10,7 +10,7 @@
 #include <gdcontact/manifold.hpp>
 #include <gdcontact/polytope.hpp>
 
-#include "small_vector.hpp"
+#include "geometry/small_vector.hpp"
 
 #include <cmath>
 

@@ -4,8 +4,8 @@
 
 #include <gdcontact/collide.hpp>
 
-#include "feature_intersection.hpp"
-#include "minkowski.hpp"
+#include "contact/feature_intersection.hpp"
+#include "geometry/minkowski.hpp"
 
 namespace gdc::detail {
 

@@ -1,4 +1,4 @@
-#include "separating_axis.hpp"
+#include "geometry/separating_axis.hpp"
 
 #include <cmath>
 #include <vector>

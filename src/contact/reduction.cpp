@@ -1,4 +1,4 @@
-#include "reduction.hpp"
+#include "contact/reduction.hpp"
 
 #include <algorithm>
 #include <array>

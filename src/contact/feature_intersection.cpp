@@ -1,4 +1,4 @@
-#include "feature_intersection.hpp"
+#include "contact/feature_intersection.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 // a point is swapped in that restores them. docs/algorithm.md, "The contact set the solver gets".
 #pragma once
 
-#include "feature_intersection.hpp"
+#include "contact/feature_intersection.hpp"
 
 namespace gdc::detail {
 

@@ -6,7 +6,7 @@
 // own depth, so a tilted face–face contact reports the true wedge of depths rather than one value.
 #pragma once
 
-#include "small_vector.hpp"
+#include "geometry/small_vector.hpp"
 
 #include <gdcontact/manifold.hpp>
 

@@ -8,15 +8,15 @@
 // bit for bit on box_box_test's poses; where the general pipeline takes a rare branch (no
 // growth-distance normal, the overhang check, an empty intersection, a depth confirmation that
 // may add a point) the pair goes to it whole.
-#include "box_box.hpp"
+#include "contact/box_box.hpp"
 
-#include "box_shape.hpp"
-#include "collide_general.hpp"
-#include "feature_intersection.hpp"
-#include "gauss_map.hpp"
-#include "growth_distance.hpp"
-#include "minkowski.hpp"
-#include "reduction.hpp"
+#include "geometry/box_shape.hpp"
+#include "contact/collide_general.hpp"
+#include "contact/feature_intersection.hpp"
+#include "contact/gauss_map.hpp"
+#include "geometry/growth_distance.hpp"
+#include "geometry/minkowski.hpp"
+#include "contact/reduction.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 // precision when both bodies are far from the world origin.
 #pragma once
 
-#include "growth_distance.hpp"
+#include "geometry/growth_distance.hpp"
 
 namespace gdc::detail {
 

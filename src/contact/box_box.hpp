@@ -3,8 +3,8 @@
 
 #include <gdcontact/collide.hpp>
 
-#include "box_shape.hpp"
-#include "growth_distance.hpp"
+#include "geometry/box_shape.hpp"
+#include "geometry/growth_distance.hpp"
 
 #include <cmath>
 

@@ -2,15 +2,15 @@
 // (precision far from the origin) and mapped to the world at the end.
 #include <gdcontact/collide.hpp>
 
-#include "box_box.hpp"
-#include "collide_general.hpp"
-#include "feature_intersection.hpp"
-#include "gauss_map.hpp"
-#include "growth_distance.hpp"
-#include "half_space.hpp"
-#include "minkowski.hpp"
-#include "reduction.hpp"
-#include "separating_axis.hpp"
+#include "contact/box_box.hpp"
+#include "contact/collide_general.hpp"
+#include "contact/feature_intersection.hpp"
+#include "contact/gauss_map.hpp"
+#include "geometry/growth_distance.hpp"
+#include "contact/half_space.hpp"
+#include "geometry/minkowski.hpp"
+#include "contact/reduction.hpp"
+#include "geometry/separating_axis.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "gauss_map.hpp"
+#include "contact/gauss_map.hpp"
 
 #include <algorithm>
 #include <cmath>

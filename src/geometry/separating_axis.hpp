@@ -8,7 +8,7 @@
 // Separating Axis Test between Convex Polyhedra", GDC 2013).
 #pragma once
 
-#include "minkowski.hpp"
+#include "geometry/minkowski.hpp"
 
 namespace gdc::detail {
 

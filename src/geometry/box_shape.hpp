@@ -5,8 +5,8 @@
 // hull's general answer (Polytope::supportVertex, selectFeature, featureVertices).
 #pragma once
 
-#include "feature_intersection.hpp"
-#include "gauss_map.hpp"
+#include "contact/feature_intersection.hpp"
+#include "contact/gauss_map.hpp"
 
 #include <gdcontact/polytope.hpp>
 

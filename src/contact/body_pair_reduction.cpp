@@ -14,8 +14,8 @@
 
 #include <gdcontact/manifold.hpp>
 
-#include "feature_intersection.hpp"  // detail::planeBasis: the contact plane's basis, chosen from the normal alone
-#include "reduction.hpp"             // detail::rankContacts: the per-geom-pair ranking and its hysteresis
+#include "contact/feature_intersection.hpp"  // detail::planeBasis: the contact plane's basis, chosen from the normal alone
+#include "contact/reduction.hpp"             // detail::rankContacts: the per-geom-pair ranking and its hysteresis
 
 #include <algorithm>
 #include <array>
