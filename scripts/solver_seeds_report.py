@@ -230,26 +230,7 @@ def section(results, plot_link, level, reproduce=None):
                            + ["best ODE option", "gdc-only / dBox-only failures"], overview))
     out.append("")
     out.extend(sleep_lines(results, scenes))
-    out.append("The two 20-stack measures. This benchmark's `stack20` (20 cubes of 20 cm, 4 s) fails every seed under "
-               "QuickStep 20 for every contender, while the contact-order study of docs/algorithm.md "
-               "(`ode_contact_order_seeds stack20 CONTENDER 200 20`: 20 cubes of 1 m, 10 s, ±1 cm jitter, no tilt) "
-               "had gdcontact 0 of 200 against dBox 36 of 200. Both are right about their own question; they "
-               "differ in the limit and in the scene. The study counted a run failed when the top cube fell (sank "
-               "by half its size); this table's limits fail a run when *any* body ends half its width from its "
-               "start. Under this table's limits the study's own scene gives gdcontact 82 of 200 against dBox 199 "
-               "of 200, and this benchmark's scene in the study's driver (`ode_contact_order_seeds stack20-bench "
-               "CONTENDER 200 20`) gives 200 of 200 for both under either limit (by the study's limit: dBox 200, "
-               "gdcontact 196): a stack of 20 cm cubes sways out under QuickStep 20 at dt 0.01 s whatever the "
-               "contacts (the same gravity step is five times larger relative to the cube), a stack of 1 m cubes "
-               "stands or sways by the contacts. The limits of this table are the ones that count (the study "
-               "prints them too); the 20 cm 20-stack under QuickStep 20 is a scene no contender holds, so it "
-               "ranks contenders only by drift.\n")
-    out.append("Timings. The fail fractions, drift, contacts, sleep and message counts are deterministic per seed "
-               "(the same numbers on any load). The ms columns are not: the free runs' collision/solver ms are "
-               "means over steps while other processes share the 2 cores, and vary by ±20–30 % between runs; the "
-               "identical-state costs take, per state, the fastest of the repetitions with the contenders "
-               "interleaved, so their *ratios* are steadier (repeated runs of the default mode differ by about "
-               "±10 % in a ratio), but a ratio within 10 % of 1 is a tie.\n")
+    out.append("How to read the 20-stack and the timings: docs/benchmarks.md, after this section.\n")
     if plot_link:
         out.append(f"![stability against cost per scene]({plot_link})\n")
     by_scene = {}
