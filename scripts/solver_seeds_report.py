@@ -101,6 +101,52 @@ def plot(rows, scenes, results):
     return plots.save_figure(figure, os.path.join(results, "solver_seeds.png"), dpi=100, tight=False)
 
 
+def sleep_lines(results, scenes):
+    """Sleeping, paired by seed: per scene and stepper where bodies fell asleep, when every body of a
+    gdcontact run slept against the same seed's dBox run (never = later than any time), with a
+    two-sided sign test over the seeds that differ."""
+    runs_path = os.path.join(results, "solver_seeds_runs.csv")
+    if not os.path.exists(runs_path):
+        return []
+    times = {}
+    for r in data.read_csv(runs_path):
+        t = float(r["sleep_time"])
+        times[(r["scene"], r["stepper"], r["contender"], r["seed"])] = t if t >= 0 else math.inf
+    lines = []
+    for sc in scenes:
+        for stepper in STEPPER_ORDER:
+            seeds = [k[3] for k in times if k[:3] == (sc["scene"], stepper, "gdc") and (sc["scene"], stepper, "ode-box", k[3]) in times]
+            if not seeds:
+                continue
+            g = [times[(sc["scene"], stepper, "gdc", s)] for s in seeds]
+            b = [times[(sc["scene"], stepper, "ode-box", s)] for s in seeds]
+            if all(math.isinf(x) for x in g + b):
+                continue
+            later = sum(x > y for x, y in zip(g, b))
+            sooner = sum(x < y for x, y in zip(g, b))
+            n, k = later + sooner, min(later, sooner)
+            p = min(1.0, 2 * sum(math.comb(n, i) for i in range(k + 1)) / 2 ** n) if n else 1.0
+
+            def median(values):
+                v = sorted(values)
+                m = v[len(v) // 2] if len(v) % 2 else 0.5 * (v[len(v) // 2 - 1] + v[len(v) // 2])
+                return "never" if math.isinf(m) else fmt(m, 2)
+            lines.append([sc["scene"], STEPPER_LABEL[stepper], str(len(seeds)),
+                          f"{sum(not math.isinf(x) for x in g)} / {sum(not math.isinf(x) for x in b)}",
+                          f"{median(g)} / {median(b)}", f"{later} / {sooner} / {len(seeds) - n}", fmt(p, 2)])
+    if not lines:
+        return []
+    out = ["Sleeping (issue 22: bodies asleep no later than with dBox), paired by seed: the seeds where every body "
+           "slept within the run (gdcontact / dBox), the median time until they did (a run where they never did "
+           "counts as later than any), the seeds where gdcontact slept later / sooner / at the same step as "
+           "dBox, and the two-sided sign test's p over the seeds that differ (p < 0.05: a difference beyond "
+           "seed noise). Scenes and steppers where neither contender's bodies all slept in any seed are left "
+           "out.\n"]
+    out.extend(table_lines(["scene", "stepper", "seeds", "all asleep", "median s", "later / sooner / same", "sign test p"], lines))
+    out.append("")
+    return out
+
+
 def section(results, plot_link, level, reproduce=None):
     h = "#" * level
     rows = data.read_csv(os.path.join(results, "solver_seeds_summary.csv"))
@@ -183,6 +229,8 @@ def section(results, plot_link, level, reproduce=None):
     out.extend(table_lines(["scene", "stepper"] + [contender_label(c) for c in contenders]
                            + ["best ODE option", "gdc-only / dBox-only failures"], overview))
     out.append("")
+    out.extend(sleep_lines(results, scenes))
+    out.append("How to read the 20-stack and the timings: docs/benchmarks.md, after this section.\n")
     if plot_link:
         out.append(f"![stability against cost per scene]({plot_link})\n")
     by_scene = {}

@@ -298,6 +298,112 @@ inline int rankContacts(const RankPoint* points, int count, const RankingRule& r
     return wanted;
 }
 
+
+// The body-pair reduction's fill by area from a given triangle (src/body_pair_reduction.cpp's
+// fillByArea before commit "rankContacts from a given prefix"), verbatim with its helpers: the
+// reference that tests/reduction_test.cpp compares detail::rankContacts with a prefix against.
+namespace fill {
+namespace {
+// Convex hull (counter-clockwise, monotone chain) of the points `indices[0, n)` of `points`, as
+// indices into `hull` (room for 2n); returns its size. Collinear points are left out; one or two
+// points give themselves. `indices` is sorted in place.
+int hullOf(const std::vector<Vec2>& points, int* indices, int n, int* hull) {
+    std::sort(indices, indices + n, [&](int a, int b) {
+        const Vec2& p = points[a];
+        const Vec2& q = points[b];
+        return p.x() < q.x() || (p.x() == q.x() && (p.y() < q.y() || (p.y() == q.y() && a < b)));
+    });
+    if (n < 3) {
+        std::copy(indices, indices + n, hull);
+        return n;
+    }
+    int k = 0;
+    for (int i = 0; i < n; ++i) {
+        while (k >= 2 && cross2(points[hull[k - 1]] - points[hull[k - 2]], points[indices[i]] - points[hull[k - 2]]) <= 0) --k;
+        hull[k++] = indices[i];
+    }
+    for (int i = n - 2, lower = k + 1; i >= 0; --i) {
+        while (k >= lower && cross2(points[hull[k - 1]] - points[hull[k - 2]], points[indices[i]] - points[hull[k - 2]]) <= 0)
+            --k;
+        hull[k++] = indices[i];
+    }
+    return std::max(1, k - 1);
+}
+
+// Hull of a few chosen points (≤ kMaxManifoldPoints + 1), into a fixed array.
+struct SmallHull {
+    std::array<int, 2 * (kMaxManifoldPoints + 2)> vertices;
+    int size = 0;
+    SmallHull(const std::vector<Vec2>& points, const int* chosen, int n) {
+        std::array<int, kMaxManifoldPoints + 2> copy;
+        std::copy(chosen, chosen + n, copy.begin());
+        size = hullOf(points, copy.data(), n, vertices.data());
+    }
+};
+
+// Area the counter-clockwise polygon `hull` gains when `p` joins it.
+double areaGain(const std::vector<Vec2>& points, const SmallHull& hull, const Vec2& p) {
+    if (hull.size == 2)  // a segment: the triangle it makes with p
+        return 0.5 * std::abs(cross2(points[hull.vertices[1]] - points[hull.vertices[0]], p - points[hull.vertices[0]]));
+    double gain = 0;
+    for (int i = 0; i < hull.size; ++i) {
+        const Vec2& a = points[hull.vertices[i]];
+        const Vec2& b = points[hull.vertices[i + 1 == hull.size ? 0 : i + 1]];
+        const double twiceArea = cross2(b - a, p - a);
+        if (twiceArea < 0) gain -= 0.5 * twiceArea;
+    }
+    return gain;
+}
+
+// Adds points of `candidates[0, n)` to `chosen` (the kept ones; `size` of them) until `budget`:
+// each time the one adding the most area — with the per-geom-pair reduction's hysteresis: gains
+// within `keep` (1 − Settings::reductionHysteresis) of the best count as equal and go to the
+// largest identity (a point's position along detail::identityDirection), so a perturbation
+// within the band keeps the same points. Collinear sets (no area above `areaTolerance`) spread:
+// the point farthest from every kept one, by the same band. `nearest` (per point, indexed like
+// `points`) is scratch. Returns the new size.
+int fillByArea(const std::vector<Vec2>& points, const std::vector<double>& identity, const int* candidates, int n,
+               int budget, double keep, double areaTolerance, int* chosen, int size, std::vector<double>& nearest,
+               std::vector<double>& gain) {
+    auto isChosen = [&](int i) { return std::find(chosen, chosen + size, i) != chosen + size; };
+    for (int c = 0; c < n; ++c) {
+        const int i = candidates[c];
+        nearest[i] = 1e300;
+        for (int k = 0; k < size; ++k) nearest[i] = std::min(nearest[i], (points[i] - points[chosen[k]]).squaredNorm());
+    }
+    while (size < budget) {
+        const SmallHull hull(points, chosen, size);
+        double bestGain = 0, bestSpread = 0;
+        int free = 0;
+        for (int c = 0; c < n; ++c) {
+            const int i = candidates[c];
+            if (isChosen(i)) continue;
+            ++free;
+            gain[i] = hull.size >= 2 ? areaGain(points, hull, points[i]) : 0.0;
+            bestGain = std::max(bestGain, gain[i]);
+            bestSpread = std::max(bestSpread, nearest[i]);
+        }
+        if (free == 0) break;
+        const bool byArea = bestGain > areaTolerance;
+        const double threshold = byArea ? keep * bestGain : keep * keep * bestSpread;
+        int best = -1;
+        for (int c = 0; c < n; ++c) {
+            const int i = candidates[c];
+            if (isChosen(i) || (byArea ? gain[i] : nearest[i]) < threshold) continue;
+            if (best < 0 || identity[i] > identity[best]) best = i;
+        }
+        chosen[size++] = best;
+        for (int c = 0; c < n; ++c) {
+            const int i = candidates[c];
+            nearest[i] = std::min(nearest[i], (points[i] - points[best]).squaredNorm());
+        }
+    }
+    return size;
+}
+
+}  // namespace
+}  // namespace fill
+
 }  // namespace gdc::reference
 
 #pragma GCC diagnostic pop

@@ -366,3 +366,80 @@ TEST_CASE("The ranking's cheaper path chooses exactly what the former code chose
     CHECK(compared >= 1000000);
     CHECK(centroidSwaps > 1000);
 }
+
+// The ranking from a given prefix (RankingRule::fixedCount) replaced the body-pair reduction's own
+// fill by area (fillByArea, tests/reduction_reference.hpp verbatim): from the same three points it
+// must choose the same points in the same order — on 120000 sets of the kinds above (convex
+// polygons, clouds, near-duplicate octagons, collinear and repeated points, equal depths), every
+// budget from 3, three hysteresis bands, prefixes of three random distinct points (collinear ones
+// included) and ties of identities.
+TEST_CASE("The ranking from a given prefix chooses exactly what the body-pair fill chose") {
+    std::mt19937 random(2027);
+    std::uniform_real_distribution<double> unit(0, 1);
+    long compared = 0, differing = 0, beyondPrefix = 0;
+    for (int trial = 0; trial < 120000; ++trial) {
+        const int n = 4 + trial % 13;
+        const int kind = (trial / 13) % 5;
+        std::vector<Vec2> planar;
+        if (kind == 0) {
+            for (const auto& q : randomPolygon(random, n)) planar.push_back(q.planar);
+        } else if (kind == 1) {
+            for (int i = 0; i < n; ++i) planar.push_back(Vec2(unit(random) - 0.5, unit(random) - 0.5));
+        } else if (kind == 2) {
+            const double turn = 0.02 * (unit(random) - 0.5);
+            for (int i = 0; i < n; ++i) {
+                const double angle = 0.7853981633974483 + 1.5707963267948966 * (i % 4) + (i / 4 % 2 ? turn : -turn);
+                planar.push_back(Vec2(0.35 * std::cos(angle), 0.35 * std::sin(angle)) + Vec2(1e-3 * unit(random), 1e-3 * unit(random)));
+            }
+        } else if (kind == 3) {
+            const Vec2 direction(std::cos(6.283 * unit(random)), std::sin(6.283 * unit(random)));
+            for (int i = 0; i < n; ++i) planar.push_back(direction * std::floor(8 * unit(random)) * 0.1);
+        } else {
+            for (const auto& q : randomPolygon(random, n)) planar.push_back(q.planar);
+            planar[static_cast<size_t>(n - 1)] = planar[0];
+        }
+        std::vector<detail::RankPoint> points;
+        std::vector<double> identity;
+        for (const Vec2& q : planar) {
+            identity.push_back(q.x() * 0.7548776662466927 + q.y() * 0.5698402909980532 + 0.01 * unit(random));
+            points.push_back({q, 0.01 * unit(random), identity.back()});
+        }
+        if (trial % 7 == 0) identity[3] = points[3].identity = identity[1];  // a tie of identities
+        // Three distinct random points as the prefix.
+        int prefix[3];
+        for (int k = 0; k < 3; ++k) {
+            int i;
+            do i = static_cast<int>(unit(random) * n) % n;
+            while (std::find(prefix, prefix + k, i) != prefix + k);
+            prefix[k] = i;
+        }
+        const double hysteresis = trial % 3 == 0 ? 0.0 : trial % 3 == 1 ? 0.01 : 0.1;
+        const double areaTolerance = trial % 2 ? 1e-9 : 1e-12;
+        std::vector<int> candidates(static_cast<size_t>(n));
+        for (int i = 0; i < n; ++i) candidates[static_cast<size_t>(i)] = i;
+        for (int budget = 3; budget <= n + 1; ++budget) {
+            detail::RankingRule rule = ruleFor(budget, hysteresis);
+            rule.fixedCount = 3;
+            rule.areaTolerance = areaTolerance;
+            int ours[kMaxManifoldPoints + 2], former[kMaxManifoldPoints + 2];
+            std::copy(prefix, prefix + 3, ours);
+            std::copy(prefix, prefix + 3, former);
+            const int count = detail::rankContacts(points.data(), n, rule, ours);
+            std::vector<double> nearest(static_cast<size_t>(n)), gain(static_cast<size_t>(n));
+            const int formerCount = reference::fill::fillByArea(planar, identity, candidates.data(), n, std::min(budget, kMaxManifoldPoints),
+                                                                1 - hysteresis, areaTolerance, former, 3, nearest, gain);
+            ++compared;
+            beyondPrefix += count > 3;
+            const bool same = count == formerCount && std::equal(ours, ours + count, former);
+            if (!same) {
+                ++differing;
+                INFO("trial " << trial << " kind " << kind << " points " << n << " budget " << budget << " count " << count
+                              << " former " << formerCount);
+                CHECK(same);
+            }
+        }
+    }
+    WARN(compared << " fills compared, " << differing << " differ, " << beyondPrefix << " chose beyond the prefix");
+    CHECK(differing == 0);
+    CHECK(compared >= 100000);
+}

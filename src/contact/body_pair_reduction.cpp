@@ -88,66 +88,6 @@ bool strictlyInside(const std::vector<Vec2>& points, const int* hull, int size, 
     return true;
 }
 
-// Area the counter-clockwise polygon `hull` gains when `p` joins it.
-double areaGain(const std::vector<Vec2>& points, const SmallHull& hull, const Vec2& p) {
-    if (hull.size == 2)  // a segment: the triangle it makes with p
-        return 0.5 * std::abs(cross2(points[hull.vertices[1]] - points[hull.vertices[0]], p - points[hull.vertices[0]]));
-    double gain = 0;
-    for (int i = 0; i < hull.size; ++i) {
-        const Vec2& a = points[hull.vertices[i]];
-        const Vec2& b = points[hull.vertices[i + 1 == hull.size ? 0 : i + 1]];
-        const double twiceArea = cross2(b - a, p - a);
-        if (twiceArea < 0) gain -= 0.5 * twiceArea;
-    }
-    return gain;
-}
-
-// Adds points of `candidates[0, n)` to `chosen` (the kept ones; `size` of them) until `budget`:
-// each time the one adding the most area — with the per-geom-pair reduction's hysteresis: gains
-// within `keep` (1 − Settings::reductionHysteresis) of the best count as equal and go to the
-// largest identity (a point's position along detail::identityDirection), so a perturbation
-// within the band keeps the same points. Collinear sets (no area above `areaTolerance`) spread:
-// the point farthest from every kept one, by the same band. `nearest` (per point, indexed like
-// `points`) is scratch. Returns the new size.
-int fillByArea(const std::vector<Vec2>& points, const std::vector<double>& identity, const int* candidates, int n,
-               int budget, double keep, double areaTolerance, int* chosen, int size, std::vector<double>& nearest,
-               std::vector<double>& gain) {
-    auto isChosen = [&](int i) { return std::find(chosen, chosen + size, i) != chosen + size; };
-    for (int c = 0; c < n; ++c) {
-        const int i = candidates[c];
-        nearest[i] = 1e300;
-        for (int k = 0; k < size; ++k) nearest[i] = std::min(nearest[i], (points[i] - points[chosen[k]]).squaredNorm());
-    }
-    while (size < budget) {
-        const SmallHull hull(points, chosen, size);
-        double bestGain = 0, bestSpread = 0;
-        int free = 0;
-        for (int c = 0; c < n; ++c) {
-            const int i = candidates[c];
-            if (isChosen(i)) continue;
-            ++free;
-            gain[i] = hull.size >= 2 ? areaGain(points, hull, points[i]) : 0.0;
-            bestGain = std::max(bestGain, gain[i]);
-            bestSpread = std::max(bestSpread, nearest[i]);
-        }
-        if (free == 0) break;
-        const bool byArea = bestGain > areaTolerance;
-        const double threshold = byArea ? keep * bestGain : keep * keep * bestSpread;
-        int best = -1;
-        for (int c = 0; c < n; ++c) {
-            const int i = candidates[c];
-            if (isChosen(i) || (byArea ? gain[i] : nearest[i]) < threshold) continue;
-            if (best < 0 || identity[i] > identity[best]) best = i;
-        }
-        chosen[size++] = best;
-        for (int c = 0; c < n; ++c) {
-            const int i = candidates[c];
-            nearest[i] = std::min(nearest[i], (points[i] - points[best]).squaredNorm());
-        }
-    }
-    return size;
-}
-
 void requireValid(const BodyPairContact& c, int index) {
     const bool finite = c.position.allFinite() && c.normal.allFinite() && std::isfinite(c.depth);
     if (!finite || std::abs(c.normal.norm() - 1.0) > 1e-6)
@@ -178,8 +118,7 @@ int reduceBodyPairContacts(const BodyPairContact* contacts, int count, const Bod
     int* distinct = members + count;
     int* hull = distinct + count;  // room for 2 · count
     std::vector<Vec2> planar(static_cast<std::size_t>(count));
-    std::vector<double> nearest(static_cast<std::size_t>(count)), gain(static_cast<std::size_t>(count)),
-        identity(static_cast<std::size_t>(count));
+    std::vector<double> identity(static_cast<std::size_t>(count));
     std::vector<detail::RankPoint> ranked;
 
     // 1. Clusters by normal, in the order of the contacts.
@@ -333,23 +272,36 @@ int reduceBodyPairContacts(const BodyPairContact* contacts, int count, const Bod
                         if (!strictlyInside(planar, corner.vertices.data(), corner.size, centre, -slack)) return -1.0;
                         return 0.5 * std::abs(cross2(planar[a] - planar[deepest], planar[b] - planar[deepest]));
                     };
+                    // Each pair's area once (−1: the triangle does not hold the centre), then the
+                    // choice within the band.
+                    std::vector<double> area(static_cast<std::size_t>(distinctCount) * static_cast<std::size_t>(distinctCount), -1.0);
+                    auto areaOf = [&](int j, int k) -> double& { return area[static_cast<std::size_t>(j) * static_cast<std::size_t>(distinctCount) + static_cast<std::size_t>(k)]; };
                     double largest = 0;
                     for (int j = 0; j < distinctCount; ++j)
                         for (int k = j + 1; k < distinctCount; ++k)
                             if (distinct[j] != deepest && distinct[k] != deepest)
-                                largest = std::max(largest, triangleArea(distinct[j], distinct[k]));
-                    int bestA = -1, bestB = -1;
-                    auto rank = [&](int a, int b) { return std::make_pair(std::max(identity[a], identity[b]), std::min(identity[a], identity[b])); };
+                                largest = std::max(largest, areaOf(j, k) = triangleArea(distinct[j], distinct[k]));
+                    int bestJ = -1, bestK = -1;
+                    auto rank = [&](int j, int k) {
+                        const double a = identity[distinct[j]], b = identity[distinct[k]];
+                        return std::make_pair(std::max(a, b), std::min(a, b));
+                    };
                     for (int j = 0; j < distinctCount && largest > 0; ++j)
                         for (int k = j + 1; k < distinctCount; ++k) {
-                            const int a = distinct[j], b = distinct[k];
-                            if (a == deepest || b == deepest || triangleArea(a, b) < keep * largest) continue;
-                            if (bestA < 0 || rank(a, b) > rank(bestA, bestB)) bestA = a, bestB = b;
+                            if (distinct[j] == deepest || distinct[k] == deepest || areaOf(j, k) < keep * largest) continue;
+                            if (bestJ < 0 || rank(j, k) > rank(bestJ, bestK)) bestJ = j, bestK = k;
                         }
-                    if (bestA >= 0) {
-                        chosen[0] = deepest, chosen[1] = bestA, chosen[2] = bestB;
-                        size = fillByArea(planar, identity, distinct, distinctCount, budget, keep, tolerance * extent,
-                                          chosen.data(), 3, nearest, gain);
+                    if (bestJ >= 0) {
+                        // The rest of the budget by area from that triangle: the ranking from a
+                        // given prefix (positions in `ranked`, which follows `distinct`).
+                        int positions[kMaxManifoldPoints];
+                        positions[0] = static_cast<int>(std::find(distinct, distinct + distinctCount, deepest) - distinct);
+                        positions[1] = bestJ, positions[2] = bestK;
+                        detail::RankingRule fill = rule;
+                        fill.fixedCount = 3;
+                        fill.areaTolerance = tolerance * extent;
+                        size = detail::rankContacts(ranked.data(), distinctCount, fill, positions);
+                        for (int k = 0; k < size; ++k) chosen[k] = distinct[positions[k]];
                     }
                 }
             }

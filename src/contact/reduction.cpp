@@ -139,8 +139,10 @@ int rankAllOfFew(const RankPoint* points, int count, const RankingRule& rule, in
 }
 
 int rankContacts(const RankPoint* points, int count, const RankingRule& rule, int* chosen) {
-    if (count <= 4 && count <= rule.maxCount) return rankAllOfFew(points, count, rule, chosen);
+    const int fixed = rule.fixedCount;
+    if (fixed == 0 && count <= 4 && count <= rule.maxCount) return rankAllOfFew(points, count, rule, chosen);
     const int wanted = std::min(count, rule.maxCount);
+    if (fixed > 0 && fixed >= wanted) return fixed;
     if (wanted <= 0) return 0;
     const double keep = 1 - rule.hysteresis;
     // The free points (indices, ascending: a tie of identities goes to the lower index), and the
@@ -159,8 +161,9 @@ int rankContacts(const RankPoint* points, int count, const RankingRule& rule, in
     std::uint64_t* sees = count > kMaxManifoldPoints ? seesHeap.data() : seesStorage;
     int* free = count > kMaxManifoldPoints ? freeHeap.data() : freeStorage;
     double* value = count > kMaxManifoldPoints ? valueHeap.data() : valueStorage;
-    int freeCount = count;
-    for (int k = 0; k < count; ++k) free[k] = k;
+    int freeCount = 0;
+    for (int k = 0; k < count; ++k)
+        if (std::find(chosen, chosen + fixed, k) == chosen + fixed) free[freeCount++] = k;
     // Among the free points whose value reaches `threshold`, the one of largest identity (its
     // position in `free`).
     auto pickAtLeast = [&](double threshold) {
@@ -177,39 +180,56 @@ int rankContacts(const RankPoint* points, int count, const RankingRule& rule, in
         for (int k = position; k < freeCount; ++k) free[k] = free[k + 1];
     };
 
-    // The deepest point; depths within rounding of it are equal (an exactly resting face's corners).
-    // No wider band: the first point carries the pair's whole penetration (ODE's contract), and a
-    // dropped deeper corner tilted dWorldStep's stacks by micrometres.
-    double deepest = -INFINITY;
-    for (int k = 0; k < count; ++k) deepest = std::max(deepest, value[k] = points[k].depth);
-    take(pickAtLeast(deepest - rule.tolerance), 0);
-    if (wanted == 1) return 1;
-    if (count == 2) return take(0, 1), 2;
-
-    // The farthest from it: the longest segment through the first point (at least half the
-    // polygon's diameter).
-    const Vec2 p0 = points[chosen[0]].planar;
     double farthest = 0;
-    for (int k = 0; k < freeCount; ++k) farthest = std::max(farthest, value[k] = (points[free[k]].planar - p0).squaredNorm());
-    take(pickAtLeast(keep * keep * farthest), 1);
-    if (wanted == 2) return 2;
+    if (fixed == 0) {
+        // The deepest point; depths within rounding of it are equal (an exactly resting face's
+        // corners). No wider band: the first point carries the pair's whole penetration (ODE's
+        // contract), and a dropped deeper corner tilted dWorldStep's stacks by micrometres.
+        double deepest = -INFINITY;
+        for (int k = 0; k < count; ++k) deepest = std::max(deepest, value[k] = points[k].depth);
+        take(pickAtLeast(deepest - rule.tolerance), 0);
+        if (wanted == 1) return 1;
+        if (count == 2) return take(0, 1), 2;
+
+        // The farthest from it: the longest segment through the first point (at least half the
+        // polygon's diameter).
+        const Vec2 p0 = points[chosen[0]].planar;
+        for (int k = 0; k < freeCount; ++k) farthest = std::max(farthest, value[k] = (points[free[k]].planar - p0).squaredNorm());
+        take(pickAtLeast(keep * keep * farthest), 1);
+        if (wanted == 2) return 2;
+    }
+    const Vec2 p0 = points[chosen[0]].planar;
 
     // The centroid rule (below) reads the kept hull only if it can act at all.
-    const bool centroidRuleMayAct = !(wanted == count || wanted < 3 || rule.centroidCount == 0 || count > kMaxHull - 2);
+    const bool centroidRuleMayAct =
+        !(fixed > 0 || wanted == count || wanted < 3 || rule.centroidCount == 0 || count > kMaxHull - 2);
 
     // Then, slot by slot, the largest area added to the kept points' hull (for the third point the
     // triangle on the segment), the hull grown by each point taken. Collinear sets gain no area and
     // spread along their line.
-    const double areaTolerance = rule.tolerance * std::sqrt(farthest);
+    const double areaTolerance = fixed > 0 ? rule.areaTolerance : rule.tolerance * std::sqrt(farthest);
     std::array<Vec2, kMaxHull> hull, edges;  // edges[e] = hull[e + 1] - hull[e] (cyclically)
     int hullSize = 0;  // 0 until the kept points span a triangle
     auto updateEdges = [&] {
         for (int e = 0; e < hullSize; ++e) edges[e] = hull[e + 1 == hullSize ? 0 : e + 1] - hull[e];
     };
-    for (int slot = 2; slot < wanted; ++slot) {
+    // From a given prefix the kept hull is rebuilt from the kept points before each slot (the
+    // monotone chain's vertex order; a segment when they are collinear): a few slots of a rare
+    // path, where the grown hull's bookkeeping would save nothing.
+    std::array<Vec2, kMaxHull> keptPoints;
+    auto rebuildHull = [&](int kept) {
+        for (int s = 0; s < kept; ++s) keptPoints[s] = points[chosen[s]].planar;
+        hullSize = convexHull(keptPoints.data(), kept, hull.data());  // 1 or 2 points: themselves, sorted
+        updateEdges();
+    };
+    for (int slot = fixed > 0 ? fixed : 2; slot < wanted; ++slot) {
         if (slot + 1 == count) return take(0, slot), wanted;  // every point kept: no centroid rule
+        if (fixed > 0) rebuildHull(slot);
         double bestGain = 0;
-        if (hullSize < 3) {
+        if (fixed > 0 && hullSize < 3) {  // a segment (or a point: no area)
+            for (int k = 0; k < freeCount; ++k)
+                bestGain = std::max(bestGain, value[k] = hullSize < 2 ? 0.0 : 0.5 * std::abs(cross2(edges[0], points[free[k]].planar - hull[0])));
+        } else if (hullSize < 3) {
             const Vec2 segment = points[chosen[1]].planar - p0;
             for (int k = 0; k < freeCount; ++k)
                 bestGain = std::max(bestGain, value[k] = 0.5 * std::abs(cross2(segment, points[free[k]].planar - p0)));
@@ -246,7 +266,7 @@ int rankContacts(const RankPoint* points, int count, const RankingRule& rule, in
         take(position, slot);
         // A later slot reads the hull unless the next one takes the last point or there is none.
         const bool hullRead = (slot + 1 < wanted && slot + 2 != count) || centroidRuleMayAct;
-        if (!hullRead) continue;
+        if (!hullRead || fixed > 0) continue;
         const Vec2& q = points[index].planar;
         if (hullSize >= 3) {
             hullSize = insertIntoHullSeeing(hull.data(), hullSize, q, seen);

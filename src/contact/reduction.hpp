@@ -19,6 +19,13 @@ struct RankingRule {
     Vec3 identity;       ///< the fixed generic world direction in the points' frame (kIdentityDirection)
     const Vec2* centroids = nullptr;  ///< the bodies' centroids projected onto the contact plane
     int centroidCount = 0;            ///< (planar coordinates, as the points' `planar`)
+    /// A given prefix: chosen[0, fixedCount) already hold distinct indices (the caller's choice,
+    /// e.g. the body-pair reduction's triangle around a centre of mass), and the ranking fills the
+    /// rest of the budget by area from them — the kept hull rebuilt from the kept points each slot,
+    /// gains below `areaTolerance` (an area) counted as collinear — without the centroid rule.
+    /// 0: the ranking chooses every slot.
+    int fixedCount = 0;
+    double areaTolerance = 0;  ///< with fixedCount > 0 only (else tolerance × the farthest distance)
 };
 
 /// The fixed generic world direction that gives each contact point its identity for ties: the
@@ -35,7 +42,7 @@ struct RankPoint {
 
 /// Chooses at most rule.maxCount of `points` in the order of importance (indices into `points`,
 /// written to `chosen`, which holds kMaxManifoldPoints). Returns how many were chosen
-/// (min(count, maxCount)).
+/// (min(count, maxCount); with a given prefix at least rule.fixedCount).
 int rankContacts(const RankPoint* points, int count, const RankingRule& rule, int* chosen);
 
 /// The same for lifted points (their `planar` set when there are 3 or more).

@@ -6,6 +6,7 @@
 //
 // Usage: ode_contact_order_seeds SCENE CONTENDER SEEDS [ITERATIONS]
 //   SCENE: heavy (100 kg on two 1 kg boxes) | heavy1000 | stack10 | stack20 | pile (time to sleep)
+//     | stack10-bench, stack20-bench (bench_solver_seeds' stacks: 20 cm cubes, its jitter, 4 s)
 //     | plates20 (bench_solver_seeds' 10 plates of 50×50×2.5 cm, 3 s; failed: a plate sank by more
 //     than half its thickness) | heavycube (the robustness tests' 100 kg cube turned 0.1 rad on a
 //     1 kg cube, 10 s, ERP 0.2, CFM 1e-5, μ 0.8, no start jitter — only dRandSetSeed — as in
@@ -181,6 +182,7 @@ struct Outcome {
     double allAsleep = INFINITY;  // pile: s until every body is disabled
     double contactsPerStep = 0;
     double drop = 0;  // plates20: the largest sink of a plate below its start (m), over the run
+    bool failedBenchLimits = false;  // stacks: bench_solver_seeds' limits (failureLimits(), "standing")
 };
 
 Outcome run(const std::string& scene, const Contender& contender, int seed, int iterations) {
@@ -217,6 +219,18 @@ Outcome run(const std::string& scene, const Contender& contender, int seed, int 
             addBox(w, 1, 1, 1, 1, p, 0.01 * jitter(random));
         }
         seconds = 10;
+    } else if (scene == "stack10-bench" || scene == "stack20-bench") {
+        // bench_solver_seeds' stacks: 20 cm cubes of 1000 kg/m³ (8 kg), no gap, its jitter ranges
+        // (±1 mm, ±0.01 rad yaw, ±0.002 rad tilt about x and y), 4 s.
+        const int count = scene == "stack10-bench" ? 10 : 20;
+        for (int i = 0; i < count; ++i) {
+            const dReal p[3] = {1e-3 * jitter(random), 1e-3 * jitter(random), 0.1 + 0.2 * i};
+            dBodyID body = addBox(w, 0.2, 0.2, 0.2, 8, p, 0);
+            dMatrix3 r;
+            dRFromEulerAngles(r, 0.002 * jitter(random), 0.002 * jitter(random), 0.01 * jitter(random));
+            dBodySetRotation(body, r);
+        }
+        seconds = 4;
     } else if (scene == "pile") {
         dWorldSetAutoDisableFlag(w.world, 1);  // ODE's default thresholds
         std::uniform_real_distribution<double> unit(0, 1);
@@ -251,9 +265,12 @@ Outcome run(const std::string& scene, const Contender& contender, int seed, int 
         std::fprintf(stderr, "unknown scene %s\n", scene.c_str());
         std::exit(2);
     }
+    std::vector<std::array<double, 3>> startUp;
     for (dBodyID body : w.bodies) {
         const dReal* q = dBodyGetPosition(body);
         start.push_back({q[0], q[1], q[2]});
+        const dReal* r = dBodyGetRotation(body);
+        startUp.push_back({r[2], r[6], r[10]});
     }
     const int steps = static_cast<int>(std::lround(seconds / dt));
     std::vector<std::array<double, 3>> settled;
@@ -308,9 +325,26 @@ Outcome run(const std::string& scene, const Contender& contender, int seed, int 
     } else if (scene == "pile") {
         outcome.drift = 0;
     } else {
+        const double size = scene == "stack10" || scene == "stack20" ? 1.0 : 0.2;
         const dReal* top = dBodyGetPosition(w.bodies[n - 1]);
         outcome.drift = horizontal(n - 1);
-        outcome.failed = top[2] < n - 1.0;  // the top box fell (by more than half its size)
+        outcome.failed = top[2] < start[n - 1][2] - 0.5 * size;  // the top box fell (by more than half its size)
+    }
+    // bench_solver_seeds' limits for standing scenes (failureLimits() in bench/solver_seeds, the one
+    // table of docs/benchmarks.md), at the end: a body more than half its least horizontal extent
+    // from its start horizontally, its up axis turned more than 0.25 rad, or its centre lower than
+    // its start by more than half its height (every body here starts on its support: no gap).
+    for (int i = 0; i < n && scene != "pile"; ++i) {
+        dGeomID geom = dBodyGetFirstGeom(w.bodies[i]);
+        dVector3 sides;
+        dGeomBoxGetLengths(geom, sides);
+        const double width = std::min(sides[0], sides[1]), height = sides[2];  // boxes start upright
+        const dReal* q = dBodyGetPosition(w.bodies[i]);
+        const dReal* r = dBodyGetRotation(w.bodies[i]);
+        const double cosTilt = r[2] * startUp[i][0] + r[6] * startUp[i][1] + r[10] * startUp[i][2];
+        if (!std::isfinite(q[0] + q[1] + q[2]) || horizontal(i) > 0.5 * width || cosTilt < std::cos(0.25) ||
+            start[i][2] - q[2] > 0.5 * height)
+            outcome.failedBenchLimits = true;
     }
     dJointGroupDestroy(w.contacts);
     dSpaceDestroy(w.space);
@@ -339,13 +373,14 @@ int main(int argc, char** argv) {
     const Contender contender = parseContender(argv[2]);
     const int seeds = std::atoi(argv[3]);
     const int iterations = argc > 4 ? std::atoi(argv[4]) : 20;
-    int failed = 0;
+    int failed = 0, failedBenchLimits = 0;
     std::vector<double> drifts, asleep, allAsleep, drops;
     std::vector<int> failedSeeds;
     double contacts = 0;
     for (int seed = 1; seed <= seeds; ++seed) {
         const Outcome o = run(scene, contender, seed, iterations);
         failed += o.failed ? 1 : 0;
+        failedBenchLimits += o.failedBenchLimits ? 1 : 0;
         if (o.failed) failedSeeds.push_back(seed);
         drops.push_back(o.drop);
         drifts.push_back(o.drift);
@@ -368,6 +403,7 @@ int main(int argc, char** argv) {
         // The standard error of the mean: the sample's standard deviation over √seeds.
         std::printf("  drift mean %.4f (standard error %.4f)", mean, seeds > 1 ? std::sqrt(square / (seeds - 1) / seeds) : 0.0);
     }
+    if (scene != "pile") std::printf("  failed by the bench's limits %d", failedBenchLimits);
     if (scene == "plates20") std::printf("  largest sink p50 %.4f p90 %.4f m", percentile(drops, 0.5), percentile(drops, 0.9));
     if (!failedSeeds.empty()) {
         std::printf("  failed seeds");
