@@ -510,17 +510,7 @@ int collideAll(World& w, const Contender& contender) {
                               ? gdc::ode::collide(pair.g1, pair.g2, SolverConstants::contactsAsked, w.buffer.data(),
                                                   sizeof(dContactGeom), contender.settings)
                               : dCollide(pair.g1, pair.g2, SolverConstants::contactsAsked, w.buffer.data(), sizeof(dContactGeom));
-        int kept = count;
-        if (gdcontact && contender.dropTouching) {  // the experiment of Contender::dropTouching
-            bool overlapping = false;
-            for (int i = 0; i < count; ++i) overlapping |= w.buffer[i].depth > 0;
-            if (overlapping) {
-                kept = 0;
-                for (int i = 0; i < count; ++i)
-                    if (w.buffer[i].depth > 0) w.buffer[kept++] = w.buffer[i];
-            }
-        }
-        if (gdcontact) collected->add(pair.g1, pair.g2, w.buffer.data(), kept);
+        if (gdcontact) collected->add(pair.g1, pair.g2, w.buffer.data(), count);
         else if (count > 0) JointMaker::handler(&maker, pair.g1, pair.g2, w.buffer.data(), count);
     }
     if (gdcontact) collected->deliver(&maker, &JointMaker::handler);
@@ -605,8 +595,7 @@ Contender parseContender(const std::string& spec) {
         const auto equals = item.find('=');
         if (equals == std::string::npos || equals == 0)
             throw std::invalid_argument("contender '" + spec + "': '" + item + "' is not NAME=VALUE");
-        if (item.substr(0, equals) == "dropTouching") c.dropTouching = parseBool("dropTouching", item.substr(equals + 1));
-        else setSetting(c.settings, item.substr(0, equals), item.substr(equals + 1));
+        setSetting(c.settings, item.substr(0, equals), item.substr(equals + 1));
     }
     try {
         gdc::validate(c.settings);

@@ -31,14 +31,10 @@ struct Contender {
     std::string name;  ///< "gdc", "ode-box", "ode-convex", or e.g. "gdc:maxContacts=4"
     ColliderKind kind = ColliderKind::Gdcontact;
     gdc::Settings settings;  ///< gdcontact's settings (Gdcontact only)
-    /// An experiment for the adapter, not a setting: a geom pair's touching contacts (depth 0)
-    /// left out where the pair has overlapping ones, as the body-pair budget leaves them out
-    /// (`gdc:dropTouching=1`; docs/algorithm.md, "Sleeping, over seeds").
-    bool dropTouching = false;
 };
 
 /// "gdc", "ode-box", "ode-convex", or "gdc:NAME=VALUE[,NAME=VALUE...]" (settings variants, each
-/// field by its name in gdc::Settings, and dropTouching=1, Contender::dropTouching). Throws
+/// field by its name in gdc::Settings). Throws
 /// std::invalid_argument naming what is wrong.
 Contender parseContender(const std::string& spec);
 

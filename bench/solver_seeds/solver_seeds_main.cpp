@@ -7,8 +7,7 @@
 //          [--contender SPEC]... [--no-default-contenders] [--seeds N] [--seeds-for SCENE[:STEPPER]=N]...
 //          [--first-seed N] [--jobs N]
 //          [--no-sleep] [--duration-scale X] [--cost-states N] [--cost-repetitions N] [--no-cost]
-//   SPEC: gdc | ode-box | ode-convex | gdc:NAME=VALUE[,NAME=VALUE...] (a gdc::Settings variant;
-//         dropTouching=1: the experiment of Contender::dropTouching)
+//   SPEC: gdc | ode-box | ode-convex | gdc:NAME=VALUE[,NAME=VALUE...] (a gdc::Settings variant)
 // Writes DIR/solver_seeds_runs.csv (one row per run), DIR/solver_seeds_summary.csv (one row per
 // scene × stepper × contender), DIR/solver_seeds_scenes.csv, DIR/solver_seeds_limits.csv and
 // DIR/solver_seeds_command.txt; scripts/solver_seeds_report.py turns them into tables and a plot.

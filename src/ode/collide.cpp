@@ -324,6 +324,16 @@ int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int ma
         for (; depth > slot[-1].depth; --slot) *slot = slot[-1];
         *slot = Ranked{depth, i};
     }
+    // Touching points (depth ≤ 0, written as 0) are left out where the pair has overlapping ones,
+    // as the body-pair budget does within a cluster (body_pair_reduction.cpp): such a row has a
+    // right-hand side of exactly 0 and, between bodies resting together, a relative velocity of
+    // exactly 0 — a tie ODE's Dantzig pivoting cannot break ("LCP internal error, s <= 0"; the
+    // pyramid under dWorldStep printed it in 2 of 50 seeds). The overlapping points carry the
+    // support; the touching one adds no force ODE would not get a step later, when it overlaps.
+    // Measured over seeds (docs/algorithm.md, "Sleeping, over seeds"): no change in failures or
+    // drift. The ranking is deepest first, so the touching points are its tail.
+    if (kept > 0 && ranked[1].depth > 0)
+        while (!(ranked[kept].depth > 0)) --kept;
     const int written = std::min(kept, maxContacts);
     // Walk the ranked entries forwards (DeepestLast) or backwards (DeepestFirst): one step, no
     // index arithmetic per contact.

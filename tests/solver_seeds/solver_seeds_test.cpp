@@ -131,12 +131,7 @@ TEST_CASE("every gdc::Settings field is set by its name, and a contender's varia
     CHECK_THROWS_AS(ss::parseContender("gdc:maxContacts=0"), std::invalid_argument);  // gdc::validate's bounds
     CHECK_THROWS_AS(ss::parseContender("bullet"), std::invalid_argument);
     CHECK_THROWS_AS(ss::parseContender("gdc:maxContacts"), std::invalid_argument);
-    // The bench's own experiment switch, beside the settings.
-    CHECK_FALSE(variant.dropTouching);
-    const ss::Contender dropping = ss::parseContender("gdc:dropTouching=1,maxContacts=4");
-    CHECK(dropping.dropTouching);
-    CHECK(dropping.settings.maxContacts == 4);
-    CHECK_THROWS_AS(ss::parseContender("gdc:dropTouching=maybe"), std::invalid_argument);
+    CHECK_THROWS_AS(ss::parseContender("gdc:dropTouching=1"), std::invalid_argument);  // no such setting
 }
 
 TEST_CASE("a run replays exactly from its seed, and another seed jitters the start") {
