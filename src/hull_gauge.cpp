@@ -25,14 +25,22 @@ namespace gdc::detail {
 
 namespace {
 
-// Whether `exit` (a point of K's boundary, A's frame) lies inside the facet of K made by `face` of
-// A (B's support vertex along −its normal) or of B (A's along its normal, negated), by more than
-// 1e-9 of the pair's size from every edge of that facet. The facet is the face translated, so the
-// point is mapped back onto the face's plane and tested against its edges (counter-clockwise seen
-// from outside: inside is to the left of each).
+// Where `exit` (a point on the plane of a facet of K, A's frame) lies against the facet of K made by
+// `face` of A (with B's support vertex along −its normal) or of B (A's along its normal, negated).
+// The facet is the face translated, so the point is mapped back onto the face's plane and tested
+// against its edges (counter-clockwise seen from outside: inside is to the left of each), each by
+// more than 1e-9 of the pair's size: `inside` when within all, else `outside` has a bit for each
+// edge k (face vertex k to k + 1) it is not within. `support` is the other body's vertex.
+struct FaceCheck {
+    bool inside = false;
+    int support = 0;
+    std::uint64_t outside = 0;
+};
+
 template <class Points>
-bool exitFaceVerified(const MinkowskiDifference& pair, int face, bool ofA, const Vec3& exit, const Points& verticesB,
-                      double size) {
+FaceCheck checkFaceExit(const MinkowskiDifference& pair, int face, bool ofA, const Vec3& exit, const Points& verticesB,
+                        double size) {
+    FaceCheck check;
     const Polytope& polytope = ofA ? pair.a : pair.b;
     const Polytope::Face& f = polytope.faces()[face];
     const std::vector<Vec3>& vertices = polytope.vertices();
@@ -40,26 +48,24 @@ bool exitFaceVerified(const MinkowskiDifference& pair, int face, bool ofA, const
     Vec3 onFace;  // the point of the face (its own polytope's frame) that the exit point is the image of
     if (ofA) {
         // K's facet (face − c_A) + (c_B − v_B), v_B B's support along −n: p + c_A − c_B + v_B on A's face.
-        int lowest = 0;
         double lowestValue = INFINITY;
         const int count = static_cast<int>(pair.b.vertices().size());
         for (int i = 0; i < count; ++i) {
             const double value = f.normal.dot(verticesB[i]);
-            if (value < lowestValue) lowestValue = value, lowest = i;
+            if (value < lowestValue) lowestValue = value, check.support = i;
         }
-        onFace = exit + pair.centreA - pair.centreB + verticesB[lowest];
+        onFace = exit + pair.centreA - pair.centreB + verticesB[check.support];
     } else {
         // K's facet (v_A − c_A) + (c_B − face), v_A A's support along −n (n = R·n_B): v_A − c_A + c_B − p
         // on B's face.
         const Vec3 n = pair.bInA.rotation * f.normal;
-        int lowest = 0;
         double lowestValue = INFINITY;
         const std::vector<Vec3>& verticesA = pair.a.vertices();
         for (int i = 0, count = static_cast<int>(verticesA.size()); i < count; ++i) {
             const double value = n.dot(verticesA[i]);
-            if (value < lowestValue) lowestValue = value, lowest = i;
+            if (value < lowestValue) lowestValue = value, check.support = i;
         }
-        onFace = pair.bInA.applyInverse(verticesA[lowest] - pair.centreA + pair.centreB - exit);
+        onFace = pair.bInA.applyInverse(verticesA[check.support] - pair.centreA + pair.centreB - exit);
     }
     const double margin = 1e-9 * size;
     for (int k = 0; k < f.count; ++k) {
@@ -67,9 +73,20 @@ bool exitFaceVerified(const MinkowskiDifference& pair, int face, bool ofA, const
         const Vec3& to = vertices[indices[k + 1 == f.count ? 0 : k + 1]];
         const Vec3 edge = to - from;
         // (edge × (q − from))·n = distance to the edge's line × |edge|, positive inside.
-        if (!(edge.cross(onFace - from).dot(f.normal) > margin * edge.norm())) return false;
+        if (!(edge.cross(onFace - from).dot(f.normal) > margin * edge.norm())) check.outside |= std::uint64_t(1) << k;
     }
-    return true;
+    check.inside = check.outside == 0;
+    return check;
+}
+
+// The index of the edge between vertices `from` and `to` of `polytope` (−1 if none).
+int edgeBetween(const Polytope& polytope, int from, int to) {
+    const int* edges = polytope.vertexEdges().data();
+    for (int k = polytope.vertexFaceOffsets()[from], end = polytope.vertexFaceOffsets()[from + 1]; k < end; ++k) {
+        const Polytope::Edge& edge = polytope.edges()[edges[k]];
+        if ((edge.tail == from && edge.head == to) || (edge.tail == to && edge.head == from)) return edges[k];
+    }
+    return -1;
 }
 
 }  // namespace
@@ -111,6 +128,52 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair) {
         }
     };
 
+    // Gauss normals of −B in A's frame (filled by the loop over B's faces below, before any use).
+    const std::vector<Polytope::Face>& facesA = a.faces();
+    const std::vector<Polytope::Face>& facesB = b.faces();
+    std::array<Vec3, kMax> gaussB;  // −R·n_B
+    // One edge pair (indices into A's and B's edges): considered if its arcs cross on the Gauss maps
+    // (Gregorius's test, below); true when it became the best.
+    auto considerEdgePair = [&](int indexA, int indexB) {
+        const Polytope::Edge& edgeA = a.edges()[indexA];
+        const Polytope::Edge& edgeB = b.edges()[indexB];
+        const Vec3& firstA = facesA[edgeA.leftFace].normal;
+        const Vec3& secondA = facesA[edgeA.rightFace].normal;
+        const Vec3& firstB = gaussB[edgeB.leftFace];
+        const Vec3& secondB = gaussB[edgeB.rightFace];
+        const Vec3 planeA = secondA.cross(firstA), planeB = secondB.cross(firstB);
+        const double cba = firstB.dot(planeA), dba = secondB.dot(planeA);
+        const double adc = firstA.dot(planeB), bdc = secondA.dot(planeB);
+        if (!(cba * dba < 0) || !(adc * bdc < 0) || !(cba * bdc > 0)) return false;
+        const Vec3 directionA = verticesA[edgeA.head] - verticesA[edgeA.tail];
+        const Vec3 directionB = verticesB[edgeB.head] - verticesB[edgeB.tail];
+        Vec3 m = directionA.cross(directionB);
+        const double lengthSquared = m.squaredNorm();
+        if (!(lengthSquared > 1e-18 * directionA.squaredNorm() * directionB.squaredNorm())) return false;
+        double supportA = m.dot(verticesA[edgeA.tail] - pair.centreA);
+        if (supportA < 0) m = -m, supportA = -supportA;
+        const double along = m.dot(d);
+        if (!(along > 0)) return false;
+        const double supportB = m.dot(pair.centreB - verticesB[edgeB.tail]);
+        const double before = exitAlong;
+        consider(along, supportA + supportB, [&] { return Vec3(m / std::sqrt(lengthSquared)); });
+        return exitAlong != before;
+    };
+    // Whether `exit` lies inside the parallelogram facet (edge A − c_A) + (c_B − edge B) of K by more
+    // than 1e-9 of the size from its sides: exit − corner = s·e_A − t·e_B with s, t ∈ (0, 1).
+    auto edgePairHoldsExit = [&](int indexA, int indexB, const Vec3& exit) {
+        const Polytope::Edge& edgeA = a.edges()[indexA];
+        const Polytope::Edge& edgeB = b.edges()[indexB];
+        const Vec3 directionA = verticesA[edgeA.head] - verticesA[edgeA.tail];
+        const Vec3 directionB = verticesB[edgeB.head] - verticesB[edgeB.tail];
+        const Vec3 m = directionA.cross(directionB);
+        const double lengthSquared = m.squaredNorm();
+        const Vec3 r = exit - (verticesA[edgeA.tail] - pair.centreA + pair.centreB - verticesB[edgeB.tail]);
+        const double s = r.cross(directionB).dot(m) / lengthSquared, t = -directionA.cross(r).dot(m) / lengthSquared;
+        const double marginA = 1e-9 * size / directionA.norm(), marginB = 1e-9 * size / directionB.norm();
+        return s > marginA && s < 1 - marginA && t > marginB && t < 1 - marginB;
+    };
+
     int bestFace = -1;  // the face whose facet of K is the best so far, and whose it is
     bool bestFaceOfA = true;
     auto finish = [&] {
@@ -122,7 +185,6 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair) {
         return result;
     };
     // A's faces: h_K(n) = (offset − n·c_A) + (n·c_B − min n·B) = offset − min n·B + n·d.
-    const std::vector<Polytope::Face>& facesA = a.faces();
     const int faceCountA = static_cast<int>(facesA.size());
     std::array<double, kMax> alongA;  // n·d of each face normal of A
     for (int f = 0; f < faceCountA; ++f) {
@@ -137,9 +199,7 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair) {
     }
     // B's faces, turned into A's frame and negated (the Gauss map of −B): with n = R·n_B,
     // h_K(−n) = (max −n·A + n·c_A) + (offset_B + n·p − n·c_B) = offset_B + n·p − min n·A − n·d.
-    const std::vector<Polytope::Face>& facesB = b.faces();
     const int faceCountB = static_cast<int>(facesB.size());
-    std::array<Vec3, kMax> gaussB;  // −R·n_B
     std::array<double, kMax> alongB;
     for (int f = 0; f < faceCountB; ++f) {
         const Vec3 n = rotation * facesB[f].normal;
@@ -154,11 +214,40 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair) {
     }
 
     // Where the ray's exit point p = d/σ lies inside the best face's facet of K (face ⊕ the other
-    // body's support vertex) by more than rounding, that facet is the exit and σ is final: no other
-    // facet reaches p, so none has a larger ratio (every facet's plane supports K, which p is on the
-    // boundary of). A face resting on a face mostly exits so; the edge pairs are then skipped.
-    if (bestFace >= 0 && exitFaceVerified(pair, bestFace, bestFaceOfA, d * (exitSupport / exitAlong), verticesB, size))
-        return finish();
+    // body's support vertex) by more than rounding, that facet is the exit and σ is final: p is then
+    // on K's boundary, so σ is its gauge. A face resting on a face mostly exits so; the edge pairs are
+    // then skipped. Otherwise one step of a walk over K's boundary: p left the facet across edges of
+    // the face, and the facets beyond them are edge–edge facets of those face edges with the edges
+    // around the other body's support vertex. If the best of those holds p (a parallelogram), σ is
+    // final too; else every edge pair is enumerated below.
+    if (bestFace < 0) return finish();
+    const FaceCheck check = checkFaceExit(pair, bestFace, bestFaceOfA, d * (exitSupport / exitAlong), verticesB, size);
+    if (check.inside) return finish();
+    const double faceSupport = exitSupport, faceAlong = exitAlong;
+    const Vec3 faceNormals = tiedNormals;
+    {
+        const Polytope& faceOwner = bestFaceOfA ? a : b;
+        const Polytope& other = bestFaceOfA ? b : a;
+        const Polytope::Face& face = faceOwner.faces()[bestFace];
+        const int* indices = faceOwner.faceVertices().data() + face.first;
+        const int* otherEdges = other.vertexEdges().data();
+        const int otherBegin = other.vertexFaceOffsets()[check.support], otherEnd = other.vertexFaceOffsets()[check.support + 1];
+        int bestEdgeA = -1, bestEdgeB = -1;
+        for (int k = 0; k < face.count; ++k) {
+            if (!((check.outside >> k) & 1)) continue;
+            const int faceEdge = edgeBetween(faceOwner, indices[k], indices[k + 1 == face.count ? 0 : k + 1]);
+            if (faceEdge < 0) continue;
+            for (int o = otherBegin; o < otherEnd; ++o) {
+                const int edgeA = bestFaceOfA ? faceEdge : otherEdges[o], edgeB = bestFaceOfA ? otherEdges[o] : faceEdge;
+                if (considerEdgePair(edgeA, edgeB)) bestEdgeA = edgeA, bestEdgeB = edgeB;
+            }
+        }
+        if (bestEdgeA >= 0 && exitSupport != faceSupport &&
+            edgePairHoldsExit(bestEdgeA, bestEdgeB, d * (exitSupport / exitAlong)))
+            return finish();
+    }
+    // Back to the faces' answer: every edge pair follows, the ones just tried among them.
+    exitSupport = faceSupport, exitAlong = faceAlong, tiedNormals = faceNormals;
     // Edge pairs. The edges that can carry an exit facet (a face normal with n·d > 0), each with its
     // direction, a point, its arc's end normals and their cross product.
     struct ArcEdge {
