@@ -9,14 +9,16 @@
 
 namespace gdc::detail {
 
-/// Largest edge count of each polytope for which the enumeration runs, and largest product of the
-/// two edge counts (the edge-pair tests dominate its cost). Measured with bench/callgrind_counts.py
-/// (hull_hull/8, /16, /64 and box–hull, docs/algorithm.md): the enumeration costs less than the ray
-/// cast up to the product stated here and more above it. Both give the same σ and facet (the
-/// enumeration exactly, the cast within its tolerance), so this is a speed crossover, not a
-/// trade-off of the answer.
+/// Largest edge count of each polytope for which the enumeration runs (its tables are fixed arrays,
+/// B's faces a 64-bit set), and largest product of the two edge counts: the edge pairs dominate the
+/// enumeration's cost where the walk from the best face (hull_gauge.cpp) does not settle it. The
+/// product is the measured crossover (bench/hull_gauge_crossover.cpp, instructions per growth
+/// distance for two Fibonacci-sphere hulls, enumeration against ray cast): 324 pairs (8 vertices)
+/// 3 831 against 7 094, 900 (12) 6 508 against 8 532, 1 296 (14) 8 675 against 9 441, 1 764 (16)
+/// 10 883 against 10 002. Both give the same σ and facet (the enumeration exactly, the cast within
+/// its tolerance), so this is a speed crossover, not a trade-off of the answer (hence no Setting).
 constexpr int kHullGaugeMaxEdges = 64;
-constexpr int kHullGaugeMaxEdgePairs = 2048;
+constexpr int kHullGaugeMaxEdgePairs = 1296;
 
 /// Whether hullGrowth serves the pair: both polytopes small (above), and not both boxes (their closed
 /// form, boxGrowth, is cheaper still).

@@ -20,6 +20,7 @@
 #include <catch2/catch.hpp>
 
 #include <cstdio>
+#include <iterator>
 
 using namespace gdc;
 using namespace gdc::testing;
@@ -205,4 +206,52 @@ TEST_CASE("hull gauge: applies to small pairs, not to two boxes or large hulls")
     CHECK(detail::hullGaugeApplies(box, small));
     CHECK_FALSE(detail::hullGaugeApplies(box, box));
     CHECK_FALSE(detail::hullGaugeApplies(large, small));
+}
+
+TEST_CASE("hull gauge: exact ties of K's facets (a ray through an edge or corner of K)") {
+    // Two axis-aligned cube hulls, B's centre on a diagonal of A's: the ray leaves K = a cube of
+    // half-size 1 through its edge (x, z) or its corner (x, y, z), where two or three facets tie. The
+    // enumeration answers the middle of the tied normals (boxGrowth's rule); the cast any normal of
+    // the cone it converges into. Both are exit normals (their ratio is σ); the manifolds built on
+    // them are printed side by side. Where the z facet is ahead by less than the cast's tolerance
+    // (1e-11), the cast stops at K's edge and answers the middle normal, edge against edge, where
+    // the enumeration answers +z exactly, face against face: the one contact set that differs.
+    const Polytope cube = Polytope::fromPoints(boxCorners(Vec3(0.5, 0.5, 0.5)));
+    const Settings settings;
+    // Exact ties, and near ones: the z facet ahead by 1e-11 to 1e-7 (relative), inside and outside
+    // the enumeration's 1e-12 tie band and the cast's 1e-9 tolerance.
+    const Vec3 offsets[] = {Vec3(0.99, 0, 0.99), Vec3(0.99, 0.99, 0.99), Vec3(0.995, 0.3, 0.995),
+                            Vec3(0.99, 0, 0.99 + 1e-11), Vec3(0.99, 0, 0.99 + 1e-9), Vec3(0.99, 0, 0.99 + 1e-7),
+                            Vec3(0.99, 0.99 + 1e-9, 0.99 + 2e-9)};
+    int differ = 0;
+    for (int i = 0; i < int(std::size(offsets)); ++i) {
+        const Vec3& offset = offsets[i];
+        const bool exactTie = i < 3;
+        const Pose poseA{Mat3::Identity(), Vec3::Zero()}, poseB{Mat3::Identity(), offset};
+        const detail::MinkowskiDifference pair(cube, cube, poseA.relative(poseB), settings.bruteForceSupportLimit);
+        const detail::GrowthDistance enumerated = detail::hullGrowth(pair);
+        const detail::GrowthDistance cast = detail::growthDistance(pair, settings, false);
+        REQUIRE(enumerated.valid);
+        REQUIRE(cast.valid);
+        // The middle of the tied face normals.
+        Vec3 expected = Vec3::Zero();
+        for (int k = 0; k < 3; ++k)
+            if (offset[k] == offset.maxCoeff() || (offset[k] == 0.99 || offset[k] == 0.995)) expected[k] = 1;
+        // Exact ties: the middle; near ones: the facet ahead, +z, however little (the exact answer).
+        CHECK((enumerated.normal - (exactTie ? expected.normalized() : Vec3(Vec3::UnitZ()))).norm() < 1e-12);
+        CHECK(std::abs(gaugeRatio(pair, cast.normal) - enumerated.growth) <= 1e-7 * enumerated.growth);
+        const Manifold withHook = detail::collideGeneral(cube, poseA, cube, poseB, settings);
+        const Manifold withCast = detail::collideGeneral(cube, poseA, cube, poseB, settings, false, false);
+        const bool same = sameFeature(withHook.featureA, withCast.featureA) &&
+                          sameFeature(withHook.featureB, withCast.featureB) && withHook.pointCount == withCast.pointCount;
+        differ += !same;
+        std::printf("hull gauge tie at offset (%.12g, %.12g, %.12g): growth normal (%.6f, %.6f, %.6f) vs cast (%.6f, %.6f, %.6f); "
+                    "manifold features %d/%d vs %d/%d, %d vs %d points, normal (%.6f, %.6f, %.6f) vs (%.6f, %.6f, %.6f)\n",
+                    offset.x(), offset.y(), offset.z(), enumerated.normal.x(), enumerated.normal.y(), enumerated.normal.z(),
+                    cast.normal.x(), cast.normal.y(), cast.normal.z(), int(withHook.featureA.type), int(withHook.featureB.type),
+                    int(withCast.featureA.type), int(withCast.featureB.type), withHook.pointCount, withCast.pointCount,
+                    withHook.normal.x(), withHook.normal.y(), withHook.normal.z(), withCast.normal.x(), withCast.normal.y(),
+                    withCast.normal.z());
+    }
+    std::printf("hull gauge ties: manifolds differ in %d of %d\n", differ, int(std::size(offsets)));
 }
