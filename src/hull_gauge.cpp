@@ -91,12 +91,6 @@ int edgeBetween(const Polytope& polytope, int from, int to) {
 
 }  // namespace
 
-bool hullGaugeApplies(const Polytope& a, const Polytope& b) {
-    const int edgesA = static_cast<int>(a.edges().size()), edgesB = static_cast<int>(b.edges().size());
-    return !(a.isBox() && b.isBox()) && edgesA <= kHullGaugeMaxEdges && edgesB <= kHullGaugeMaxEdges &&
-           edgesA * edgesB <= kHullGaugeMaxEdgePairs;
-}
-
 GrowthDistance hullGrowth(const MinkowskiDifference& pair) {
     // A closed polytope has V − E + F = 2 and every face at least three edges, so V, F ≤ 2E/3 + 2.
     constexpr int kMax = kHullGaugeMaxEdges;

@@ -21,8 +21,12 @@ constexpr int kHullGaugeMaxEdges = 64;
 constexpr int kHullGaugeMaxEdgePairs = 1296;
 
 /// Whether hullGrowth serves the pair: both polytopes small (above), and not both boxes (their closed
-/// form, boxGrowth, is cheaper still).
-bool hullGaugeApplies(const Polytope& a, const Polytope& b);
+/// form, boxGrowth, is cheaper still). Inline: for a large hull it is all the hook costs.
+inline bool hullGaugeApplies(const Polytope& a, const Polytope& b) {
+    const auto edgesA = a.edges().size(), edgesB = b.edges().size();
+    return edgesA <= kHullGaugeMaxEdges && edgesB <= kHullGaugeMaxEdges && edgesA * edgesB <= kHullGaugeMaxEdgePairs &&
+           !(a.isBox() && b.isBox());
+}
 
 /// growthDistance(pair, settings, /*needWitnesses=*/false) by enumeration: the maximum of (m·d)/h_K(m)
 /// over the facet normals m of K = (A − c_A) − (B − c_B) — A's face normals, B's face normals negated
