@@ -4,10 +4,10 @@
 // σ (the gauge of K at d). K's facets are face ⊕ vertex (A's face normals, B's negated) and edge ⊕
 // edge, the latter exactly the edge pairs whose arcs cross on the Gauss maps of A and −B (Gottschalk;
 // Gregorius, "The Separating Axis Test between Convex Polyhedra", GDC 2013). Taking the maximum over
-// a superset of the facet normals changes nothing ((n·d)/h_K(n) ≤ σ for every n), so rounding that
-// lets a non-crossing pair through is harmless; one that drops a crossing pair is not, which is why
-// the crossing test is the exact sign test and parallel edges (covered by the faces) are the only
-// pairs skipped.
+// a superset of the facet normals changes nothing ((n·d)/h_K(n) ≤ σ for every n). The edge pairs'
+// h_K below is exact only for crossing arcs; rounding can let through only a pair whose arcs nearly
+// meet at an end, where the two edges are supports to within that rounding. Parallel edges (their
+// facet is a face's) are the only crossing pairs skipped.
 //
 // The support values need no search for an edge pair: where m lies on both arcs, A's support along
 // m is its edge and −B's is B's edge, so h_K(m) = m·(a − c_A) + m·(c_B − b) for a point a of the one
