@@ -206,6 +206,12 @@ std::vector<PairContender> cubePairContenders(const PairCase& c, bool flat, cons
             return gdc::collide(*cubeHull, posesA[i], *cubeHull, posesB[i], settings).pointCount;
         };
     });
+    // A box against the same cube as a hull: the general pipeline with one box and one hull.
+    out.add("gdcontact_box_hull8", [&] {
+        return [cube, cubeHull, posesA, posesB, settings](int i) {
+            return gdc::collide(*cube, posesA[i], *cubeHull, posesB[i], settings).pointCount;
+        };
+    });
     const BulletPoses bullet = bulletPoses(posesA, posesB);
     std::shared_ptr<btBoxShape> bulletBox = makeBulletBox(Vec3::Constant(kCubeHalfExtent));
     std::shared_ptr<btConvexHullShape> bulletHull = makeBulletHull(corners);  // cheap at 8 vertices

@@ -8,6 +8,7 @@
 #include "contact/gauss_map.hpp"
 #include "geometry/growth_distance.hpp"
 #include "contact/half_space.hpp"
+#include "geometry/hull_gauge.hpp"
 #include "geometry/minkowski.hpp"
 #include "contact/reduction.hpp"
 #include "geometry/separating_axis.hpp"
@@ -382,7 +383,7 @@ void emitManifold(const LiftedPoints& points, const Vec3& normal, const Pose& co
 }
 
 Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
-                        const Settings& settings, bool alwaysConfirmDepth) {
+                        const Settings& settings, bool alwaysConfirmDepth, bool enumerateSmallHulls) {
     requireFinite(poseA, "A");
     requireFinite(poseB, "B");
     Manifold manifold;
@@ -403,7 +404,10 @@ Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b,
         const SeparatingAxis axis = minimumOverlapAxis(pair);
         normal = axis.normal, normalOverlap = axis.overlap;
     } else {
-        growth = growthDistance(pair, settings, /*needWitnesses=*/false);
+        // The hull's hook: two small polytopes enumerate K's facets (hull_gauge.hpp), the same σ and
+        // facet the ray cast converges to; large ones (and two boxes, in closed form) cast.
+        growth = enumerateSmallHulls && hullGaugeApplies(a, b) ? hullGrowth(pair)
+                                                              : growthDistance(pair, settings, /*needWitnesses=*/false);
         normal = growth.valid ? growth.normal : minimumOverlapFaceNormal(pair);
         normalOverlap = pair.overlapAlong(normal);
     }

@@ -12,9 +12,11 @@ namespace gdc::detail {
 /// The paper's three stages for any two polytopes (collide.cpp). `alwaysConfirmDepth` runs the
 /// depth confirmation's ray cast wherever the lifted points fall short of the supports' overlap,
 /// even where a certificate shows it cannot add a point: the path the certificate replaced, kept
-/// so that a test can prove the two equal.
+/// so that a test can prove the two equal. `enumerateSmallHulls` false makes stage 1 run the GJK ray
+/// cast even where the hull hook's enumeration applies (hull_gauge.hpp): what the test of the two
+/// compares against.
 Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
-                        const Settings& settings, bool alwaysConfirmDepth = false);
+                        const Settings& settings, bool alwaysConfirmDepth = false, bool enumerateSmallHulls = true);
 /// Gauss-map feature of A lifted onto the half-space, for any polytope (half_space.cpp: the
 /// half-space query with the general shape hooks).
 Manifold collideGeneral(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings);
