@@ -16,6 +16,7 @@
 #include "geometry/minkowski.hpp"
 #include "geometry_oracles.hpp"
 #include "sanitizer_scale.hpp"
+#include "touching_poses.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -28,41 +29,6 @@ using namespace gdc::testing;
 namespace {
 
 constexpr int kPoses = scaledForSanitizers(20000);  // per pair type; six types: 1.2·10^5 poses
-
-std::vector<Vec3> randomCloud(std::mt19937& random, int count, const Vec3& scale) {
-    std::normal_distribution<double> gaussian;
-    std::vector<Vec3> points;
-    for (int i = 0; i < count; ++i)
-        points.push_back(Vec3(gaussian(random), gaussian(random), gaussian(random)).cwiseProduct(scale));
-    return points;
-}
-
-std::vector<Vec3> boxCorners(const Vec3& half) {
-    std::vector<Vec3> corners;
-    for (int i = 0; i < 8; ++i)
-        corners.emplace_back((i & 1) ? half.x() : -half.x(), (i & 2) ? half.y() : -half.y(), (i & 4) ? half.z() : -half.z());
-    return corners;
-}
-
-// B against A along a random direction: moved to touch (exact separation along it), then back by a
-// little so the pair overlaps slightly, touches or misses by a little; half the poses resting (small
-// tilts about A's up axis), half anywhere.
-std::pair<Pose, Pose> randomPoses(std::mt19937& random, const Polytope& a, const Polytope& b, bool resting) {
-    std::uniform_real_distribution<double> unit(-1.0, 1.0), overlap(-0.002, 0.05);
-    const Pose poseA{resting ? rotationAbout(Vec3(unit(random), unit(random), unit(random)), 0.01 * unit(random))
-                             : randomRotation(random),
-                     Vec3(unit(random), unit(random), unit(random))};
-    const Mat3 rotationB = resting ? rotationAbout(Vec3(unit(random), unit(random), unit(random)), 0.01 * unit(random)) *
-                                         rotationAbout(Vec3::UnitZ(), M_PI * unit(random))
-                                   : randomRotation(random);
-    const Vec3 direction = resting ? Vec3(0.001 * unit(random), 0.001 * unit(random), 1.0).normalized()
-                                   : Vec3(unit(random), unit(random), unit(random)).normalized();
-    const Vec3 start = resting ? Vec3(Vec3(0.3 * unit(random), 0.3 * unit(random), 0.0) * a.radius()) : Vec3(Vec3::Zero());
-    Pose bInA{rotationB, a.centroid() + start - rotationB * b.centroid()};
-    const detail::SeparationAlong apart = detail::separationAlong(a, b, bInA, direction, Settings{});
-    if (apart.valid) bInA.position += (apart.distance - overlap(random) * (a.radius() + b.radius())) * direction;
-    return {poseA, Pose{poseA.rotation * bInA.rotation, poseA.apply(bInA.position)}};
-}
 
 // (m·d)/h_K(m) by brute-force supports (B in A's frame).
 double gaugeRatio(const detail::MinkowskiDifference& pair, const Vec3& m) {
@@ -113,7 +79,7 @@ void compareOn(const char* name, const Polytope& a, const Polytope& b, std::uint
     // hulls less): a bound with ample room.
     const double castTolerance = 1e3 * settings.rayCastTolerance;
     for (int i = 0; i < kPoses; ++i) {
-        const auto [poseA, poseB] = randomPoses(random, a, b, i % 2 == 0);
+        const auto [poseA, poseB] = randomTouchingPoses(random, a, b, i % 2 == 0, 0.05);
         const detail::MinkowskiDifference pair(a, b, poseA.relative(poseB), settings.bruteForceSupportLimit);
         const detail::GrowthDistance enumerated = detail::hullGrowth(pair);
         const detail::GrowthDistance cast = detail::growthDistance(pair, settings, /*needWitnesses=*/false);
