@@ -56,19 +56,42 @@ public:
     // where the ranking reads them (3 or more points).
     [[gnu::always_inline]] void emit(const Vec3& normal, const Pose& poseA, int maxCount, double hysteresis,
                                      double tolerance, Manifold& manifold) {
-        RankPoint ranked[kMaxManifoldPoints];
-        const RankingRule rule{maxCount, hysteresis, tolerance, poseA.rotation.transpose() * identityDirection()};
+        // Here count_ ≤ maxCount (liftFeature's condition; a lone deepest vertex: 1 ≤ maxCount), so
+        // the ranking keeps every point and only orders them.
         const int n = count_;
-        if (n >= 3) {
+        int chosen[kMaxManifoldPoints];
+        int count = n;
+        if (n == 1) {  // one point: nothing to order
+            chosen[0] = 0;
+        } else if (n == 2) {
+            // rankContacts' choice for two points, comparison for comparison (rankAllOfFew's first
+            // slot: the point of largest identity among those within `tolerance` of the deepest;
+            // the identities are computed only where both are): no rule, no call.
+            double deepest = -INFINITY;
+            deepest = std::max(deepest, depth_[0]);
+            deepest = std::max(deepest, depth_[1]);
+            const double threshold = deepest - tolerance;
+            bool secondFirst = false;
+            if (depth_[1] >= threshold) {
+                if (depth_[0] < threshold) {
+                    secondFirst = true;
+                } else {
+                    const Vec3 identity = poseA.rotation.transpose() * identityDirection();
+                    secondFirst = local_[1].dot(identity) > local_[0].dot(identity);
+                }
+            }
+            chosen[0] = secondFirst ? 1 : 0;
+            chosen[1] = secondFirst ? 0 : 1;
+        } else {
+            RankPoint ranked[kMaxManifoldPoints];
+            const RankingRule rule{maxCount, hysteresis, tolerance,
+                                   poseA.rotation.transpose() * identityDirection()};
             Vec3 u, v;
             planeBasis(normal, u, v);
             for (int i = 0; i < n; ++i)
                 ranked[i] = {Vec2(local_[i].dot(u), local_[i].dot(v)), depth_[i], local_[i].dot(rule.identity)};
-        } else {
-            for (int i = 0; i < n; ++i) ranked[i] = {Vec2::Zero(), depth_[i], local_[i].dot(rule.identity)};
+            count = rankContacts(ranked, n, rule, chosen);
         }
-        int chosen[kMaxManifoldPoints];
-        const int count = rankContacts(ranked, n, rule, chosen);
         manifold.normal = poseA.rotation * normal;
         manifold.pointCount = count;
         double nonFinite = 0;  // emitManifold's overflow check
