@@ -163,12 +163,6 @@ double contactBoundaryCrossing(double from, double to, double contactDepth, doub
     return leaves || enters ? (from - contactDepth) / (from - to) : NAN;
 }
 
-void planeBasis(const Vec3& n, Vec3& u, Vec3& v) {
-    Vec3 helper = std::abs(n.x()) < 0.57 ? Vec3::UnitX() : (std::abs(n.y()) < 0.57 ? Vec3::UnitY() : Vec3::UnitZ());
-    u = helper.cross(n).normalized();
-    v = n.cross(u);
-}
-
 namespace {
 
 // A feature (or one face of a cap) projected onto the contact plane once: its CCW polygon and its

@@ -68,8 +68,13 @@ using LiftedPoints = SmallVector<LiftedPoint, 16>;
 /// either direction; NaN otherwise (both in contact, or the gap within rounding of the contact).
 double contactBoundaryCrossing(double from, double to, double contactDepth, double tolerance);
 
-/// Orthonormal basis (u, v) of the plane ⟂ n (unit) with u × v = n.
-void planeBasis(const Vec3& n, Vec3& u, Vec3& v);
+/// Orthonormal basis (u, v) of the plane ⟂ n (unit) with u × v = n. Inline: a call of its own was
+/// a twentieth of a box–plane query (the half-space path ranks a box face's four points with it).
+inline void planeBasis(const Vec3& n, Vec3& u, Vec3& v) {
+    Vec3 helper = std::abs(n.x()) < 0.57 ? Vec3::UnitX() : (std::abs(n.y()) < 0.57 ? Vec3::UnitY() : Vec3::UnitZ());
+    u = helper.cross(n).normalized();
+    v = n.cross(u);
+}
 
 /// Intersects feature A and feature B in the plane ⟂ `normal` (unit, from A towards B).
 /// `tolerance` is a length: the slack of containment tests. Points shallower than `minimumDepth`

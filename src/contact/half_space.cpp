@@ -51,25 +51,58 @@ public:
         depth_[count_++] = depth;
     }
     bool empty() const { return count_ == 0; }
-    void emit(const Vec3& normal, const Pose& poseA, const Settings& settings, double tolerance, Manifold& manifold) {
-        RankPoint ranked[kMaxManifoldPoints];
-        const RankingRule rule{std::max(1, std::min(settings.maxContacts, kMaxManifoldPoints)),
-                               settings.reductionHysteresis, tolerance,
-                               poseA.rotation.transpose() * identityDirection()};
-        Vec3 u = Vec3::Zero(), v = Vec3::Zero();
-        if (count_ >= 3) planeBasis(normal, u, v);
-        for (int i = 0; i < count_; ++i)
-            ranked[i] = {count_ >= 3 ? Vec2(local_[i].dot(u), local_[i].dot(v)) : Vec2::Zero(), depth_[i],
-                         local_[i].dot(rule.identity)};
+    // Always inlined into liftFeature: the points stay where the lift left them, the settings are
+    // read once, and planar coordinates (a plane basis: a square root and a division) are made only
+    // where the ranking reads them (3 or more points).
+    [[gnu::always_inline]] void emit(const Vec3& normal, const Pose& poseA, int maxCount, double hysteresis,
+                                     double tolerance, Manifold& manifold) {
+        // Here count_ ≤ maxCount (liftFeature's condition; a lone deepest vertex: 1 ≤ maxCount), so
+        // the ranking keeps every point and only orders them.
+        const int n = count_;
         int chosen[kMaxManifoldPoints];
-        const int count = rankContacts(ranked, count_, rule, chosen);
+        int count = n;
+        if (n == 1) {  // one point: nothing to order
+            chosen[0] = 0;
+        } else if (n == 2) {
+            // rankContacts' choice for two points, comparison for comparison (rankAllOfFew's first
+            // slot: the point of largest identity among those within `tolerance` of the deepest;
+            // the identities are computed only where both are): no rule, no call.
+            double deepest = -INFINITY;
+            deepest = std::max(deepest, depth_[0]);
+            deepest = std::max(deepest, depth_[1]);
+            const double threshold = deepest - tolerance;
+            bool secondFirst = false;
+            if (depth_[1] >= threshold) {
+                if (depth_[0] < threshold) {
+                    secondFirst = true;
+                } else {
+                    const Vec3 identity = poseA.rotation.transpose() * identityDirection();
+                    secondFirst = local_[1].dot(identity) > local_[0].dot(identity);
+                }
+            }
+            chosen[0] = secondFirst ? 1 : 0;
+            chosen[1] = secondFirst ? 0 : 1;
+        } else {
+            RankPoint ranked[kMaxManifoldPoints];
+            const RankingRule rule{maxCount, hysteresis, tolerance,
+                                   poseA.rotation.transpose() * identityDirection()};
+            Vec3 u, v;
+            planeBasis(normal, u, v);
+            for (int i = 0; i < n; ++i)
+                ranked[i] = {Vec2(local_[i].dot(u), local_[i].dot(v)), depth_[i], local_[i].dot(rule.identity)};
+            count = rankContacts(ranked, n, rule, chosen);
+        }
         manifold.normal = poseA.rotation * normal;
         manifold.pointCount = count;
         double nonFinite = 0;  // emitManifold's overflow check
+        ContactPoint* out = manifold.points.data();
         for (int i = 0; i < count; ++i) {
-            ContactPoint& point = manifold.points[i];
-            point = {poseA.apply(local_[chosen[i]]), depth_[chosen[i]]};
-            nonFinite += (point.position * 0.0).sum() + point.depth * 0.0;
+            const int k = chosen[i];
+            const Vec3 position = poseA.apply(local_[k]);
+            const double depth = depth_[k];
+            out[i].position = position;
+            out[i].depth = depth;
+            nonFinite += (position * 0.0).sum() + depth * 0.0;
         }
         if (!(nonFinite == 0))
             throw InvalidInput("the contact overflows double precision (coordinates or offsets near 1e308)");
@@ -184,12 +217,21 @@ struct Query {
             if (points.empty()) points.add(a.vertices()[deepest], depthOfVertex(deepest));
         };
         if (!cap && mostPoints <= maxCount) {
-            double depths[kMaxManifoldPoints];  // count ≤ maxCount ≤ kMaxManifoldPoints
-            for (int i = 0; i < count; ++i) depths[i] = depthOfVertex(indices[i]);
             DirectPoints points(plane.m);
-            liftLoop(indices, depths, count, points);
+            if (settings.spanContactRegion) {
+                double depths[kMaxManifoldPoints];  // count ≤ maxCount ≤ kMaxManifoldPoints
+                for (int i = 0; i < count; ++i) depths[i] = depthOfVertex(indices[i]);
+                liftLoop(indices, depths, count, points);
+            } else {  // liftLoop without crossings: each vertex's depth, and the vertex if it is kept
+                const Vec3* vertices = a.vertices().data();
+                const double keep = keepDepth;
+                for (int i = 0; i < count; ++i) {
+                    const double depth = depthOfVertex(indices[i]);
+                    if (depth >= keep) points.add(vertices[indices[i]], depth);
+                }
+            }
             keepDeepestIfNone(points);
-            points.emit(normal, poseA, settings, tolerance, manifold);
+            points.emit(normal, poseA, maxCount, settings.reductionHysteresis, tolerance, manifold);
             return;
         }
         GatheredPoints points(plane.m);

@@ -277,8 +277,10 @@ const Manifold& queryThrough(const CacheSource& source, dGeomID o1, dGeomID o2, 
 // The core's contacts as ODE's: at most maxContacts, written in place at stride `skip`, in the
 // order that makes dWorldQuickStep meet them as `order` says. `flip`: the core's A is o2 (its
 // normal then already points from o2 into o1).
+// `checkedFinite`: the core's own answer (not one a pair cache carried), whose every position the
+// core has checked finite (it throws where a contact overflows), so the test below would pass.
 int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int maxContacts, ContactOrder order,
-                  dGeomID o1, dGeomID o2, dContactGeom* contact, int skip) {
+                  dGeomID o1, dGeomID o2, dContactGeom* contact, int skip, bool checkedFinite = false) {
     // The core's normal points from A towards B; ODE's from o2 into o1.
     Vec3 normal = flip ? manifold.normal : Vec3(-manifold.normal);
     // norm() is the square root of squaredNorm(): where that is exactly 1 (the common case) the
@@ -319,7 +321,7 @@ int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int ma
     for (int i = 0; i < manifold.pointCount; ++i) {
         const ContactPoint& point = manifold.points[i];
         const double depth = point.depth;
-        if (!(depth >= -touchingTolerance && isFinite(point.position))) continue;
+        if (!(depth >= -touchingTolerance && (checkedFinite || isFinite(point.position)))) continue;
         Ranked* slot = &ranked[++kept];  // a pointer walk: indices made g++ unroll into index arithmetic
         for (; depth > slot[-1].depth; --slot) *slot = slot[-1];
         *slot = Ranked{depth, i};
@@ -450,8 +452,9 @@ decltype(auto) collideLimited(const Settings& settings, int maxContacts, Collide
             });
     });
     if (manifold.empty()) return 0;
+    // The half-space query's answer, straight from the core (cache.scratch), is checked finite.
     return writeContacts(manifold, planeFirst, polytope.radius(), maxContacts, settings.contactOrder, o1, o2, contact,
-                         skip);
+                         skip, &manifold == &cache.scratch);
 }
 
 [[gnu::always_inline]] inline int collidePolytopes(const detail::ResolvedPair& pair, int maxContacts, dContactGeom* contact, int skip,
