@@ -154,18 +154,19 @@ Eigen::Matrix<long double, 3, 1> planeProjection(const std::array<Vec3, 4>& poin
 }
 
 // Whether v is the triangle's closest point to within what its coordinates allow: off the exact
-// projection by at most 1e-12 of the triangle's extent from the origin (about 10^4 roundings of
-// its coordinates), and with no vertex behind it: v·p ≥ |v|² − 1e-12·|v|·extent. The ray cast
-// needs the second: a vertex of its simplex found again as the support point along v then has
-// v·(x − p) > 0 as long as |v| > 1e-12·extent, far below its tolerance (1e-10 of the pair's
-// size), so it is never mistaken for a stall. Measured over the slivers below: 800 and 1700
-// roundings; the barycentric form 3·10^7 and 4·10^15 (a vertex 0.4·extent behind v).
+// projection by at most 1e-11 of the triangle's extent from the origin (10^5 roundings of its
+// coordinates), and with no vertex behind it: v·p ≥ |v|² − 1e-11·|v|·extent. The ray cast needs
+// the second: a vertex of its simplex found again as the support point along v then has
+// v·(x − p) > 0 as long as |v| > 1e-11·extent — the extent is below twice the pair's size (the cast
+// starts half a size beyond A − B), so far below the cast's tolerance (1e-10 of the size) — and
+// is never mistaken for a stall. Measured over the slivers below: 3200 and 5500 roundings (in
+// units of 1e-16·extent); the barycentric form 3·10^7 and 4·10^15 (a vertex 0.4·extent behind v).
 bool closeToPlane(const Vec3& v, const std::array<Vec3, 4>& points) {
     const Vec3 exact = planeProjection(points).cast<double>();
     const double extent = std::max({points[0].norm(), points[1].norm(), points[2].norm()});
-    if (!((v - exact).norm() <= 1e-12 * extent)) return false;
+    if (!((v - exact).norm() <= 1e-11 * extent)) return false;
     for (int i = 0; i < 3; ++i)
-        if (!(v.dot(points[i]) >= v.squaredNorm() - 1e-12 * v.norm() * extent)) return false;
+        if (!(v.dot(points[i]) >= v.squaredNorm() - 1e-11 * v.norm() * extent)) return false;
     return true;
 }
 
