@@ -5,6 +5,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
+#include <random>
+
 using namespace gdc;
 using namespace gdc::testing;
 using gdc::detail::growthDistance;
@@ -137,4 +140,82 @@ TEST_CASE("closest point of a flat tetrahedron has convex weights at every scale
             CHECK(sum == Approx(1).margin(1e-9));
             CHECK(combination.norm() <= 1e-9 * scale);
         }
+}
+
+namespace {
+
+// The origin's projection on the plane of a triangle, in long double (the reference for the
+// closest point when the projection falls inside).
+Eigen::Matrix<long double, 3, 1> planeProjection(const std::array<Vec3, 4>& points) {
+    using V = Eigen::Matrix<long double, 3, 1>;
+    const V a = points[0].cast<long double>(), b = points[1].cast<long double>(), c = points[2].cast<long double>();
+    const V normal = (b - a).cross(c - a);
+    return normal * (normal.dot(a) / normal.squaredNorm());
+}
+
+// Whether v is the triangle's closest point to within what its coordinates allow: off the exact
+// projection by at most 1e-11 of the triangle's extent from the origin (10^5 roundings of its
+// coordinates), and with no vertex behind it: v·p ≥ |v|² − 1e-11·|v|·extent. The ray cast needs
+// the second: a vertex of its simplex found again as the support point along v then has
+// v·(x − p) > 0 as long as |v| > 1e-11·extent — the extent is below twice the pair's size (the cast
+// starts half a size beyond A − B), so far below the cast's tolerance (1e-10 of the size) — and
+// is never mistaken for a stall. Measured over the slivers below: 3200 and 5500 roundings (in
+// units of 1e-16·extent); the barycentric form 3·10^7 and 4·10^15 (a vertex 0.4·extent behind v).
+bool closeToPlane(const Vec3& v, const std::array<Vec3, 4>& points) {
+    const Vec3 exact = planeProjection(points).cast<double>();
+    const double extent = std::max({points[0].norm(), points[1].norm(), points[2].norm()});
+    if (!((v - exact).norm() <= 1e-11 * extent)) return false;
+    for (int i = 0; i < 3; ++i)
+        if (!(v.dot(points[i]) >= v.squaredNorm() - 1e-11 * v.norm() * extent)) return false;
+    return true;
+}
+
+}  // namespace
+
+// Issue 21, oracle seeds 30651115 and 30662339: on a long thin triangle (a chord of A − B that two
+// needles make, 700 long, the origin 7e-4 from its plane) the barycentric closest point was 7e-5
+// rad off perpendicular: a vertex of the simplex lay behind v (v·p < |v|²), the cast took its own
+// support point for no progress, stalled 1.5e-6 of the size short of the exit and returned a normal
+// 0.05 rad from the exit facet's — a face in collide(A, B), an edge in collide(B, A). These are the
+// two stalled triangles as the cast held them (x − support point), then thin triangles of every
+// length and distance: the closest point is the plane's (closeToPlane).
+TEST_CASE("closest point of a long thin triangle is perpendicular to it") {
+    const std::array<std::array<Vec3, 4>, 2> stalled = {{
+        {Vec3(210.23685642785676, -277.64805272013859, -88.280689828449837),
+         Vec3(-210.22614314080488, 277.67938084143816, 88.284335975366773),
+         Vec3(-200.28909988081011, 263.92011329450054, 84.018612587334076), Vec3::Zero()},
+        {Vec3(0.55990212832672848, -2.752655558241198, -3.7505577083207946),
+         Vec3(-0.92211069029924086, 4.5352353387912485, 6.1770255185516332),
+         Vec3(-0.19745726816347409, 0.9682182354755593, 1.3207004366583106), Vec3::Zero()},
+    }};
+    for (const auto& points : stalled) {
+        const auto closest = gdc::detail::closestPointToOrigin(points, 3);
+        REQUIRE(closest.count == 3);
+        CHECK(closeToPlane(closest.closest, points));
+    }
+    std::mt19937_64 random(2102);
+    std::uniform_real_distribution<double> unit(-1, 1), fraction(0.05, 0.95);
+    auto logUniform = [&](double lo, double hi) { return lo * std::pow(hi / lo, 0.5 * (unit(random) + 1)); };
+    int checked = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+        // A sliver: a long side from p to q, the third corner near it (width ≪ length), the origin
+        // over an interior point at a height ≪ length.
+        const double length = logUniform(1e-3, 1e3), width = length * logUniform(1e-4, 1e-1), height = length * logUniform(1e-9, 1e-3);
+        const Vec3 along = Vec3(unit(random), unit(random), unit(random)).normalized();
+        const Vec3 side = along.cross(Vec3(unit(random), unit(random), unit(random))).normalized();
+        const Vec3 up = along.cross(side);
+        const Vec3 p = -fraction(random) * length * along, q = p + length * along;
+        const Vec3 r = p + fraction(random) * length * along + width * side;
+        // The origin over an interior point of the triangle (convex weights, none near zero).
+        const double weightQ = fraction(random) * 0.5, weightR = fraction(random) * 0.5;
+        const Vec3 foot = (1 - weightQ - weightR) * p + weightQ * q + weightR * r;
+        const Vec3 shift = foot + height * up;  // the origin's place: every point is taken relative to it
+        std::array<Vec3, 4> points = {p - shift, q - shift, r - shift, Vec3::Zero()};
+        const auto closest = gdc::detail::closestPointToOrigin(points, 3);
+        if (closest.count != 3) continue;  // the origin's foot fell outside (a corner of the sliver)
+        ++checked;
+        CAPTURE(trial, length, width, height);
+        CHECK(closeToPlane(closest.closest, points));
+    }
+    CHECK(checked > 10000);
 }

@@ -32,7 +32,8 @@ SimplexClosest segmentResult(const Vec3& a, const Vec3& b, int ia, int ib) {
 }
 
 // Closest point of a triangle to the origin by Voronoi regions (Ericson, Real-Time Collision
-// Detection, §5.1.5), keeping only the vertices of the region it falls in.
+// Detection, §5.1.5), keeping only the vertices of the region it falls in; inside, the projection
+// along the triangle's normal.
 SimplexClosest triangleResult(const Vec3& a, const Vec3& b, const Vec3& c, int ia, int ib, int ic) {
     Vec3 ab = b - a, ac = c - a;
     double d1 = -ab.dot(a), d2 = -ac.dot(a);
@@ -51,7 +52,22 @@ SimplexClosest triangleResult(const Vec3& a, const Vec3& b, const Vec3& c, int i
     if (!(sum > 0)) return segmentResult(a, b, ia, ib);  // degenerate (collinear) triangle
     double v = vb / sum, w = vc / sum;
     SimplexClosest r;
-    r.closest = a + v * ab + w * ac;
+    // Inside the triangle the closest point is the origin's projection on its plane, computed from
+    // the plane's normal rather than as a + v·ab + w·ac. The weights come from differences of
+    // products of dot products (va, vb, vc) that cancel on a long thin triangle — the facets and
+    // chords of A − B a needle makes, 700 long and 1e-3 from the origin — and their rounding times
+    // the edge length turned v up to 7e-5 rad away from perpendicular to the triangle. The cast then
+    // found a support point of its own simplex behind v (v·w ≤ 0 with |v| still 2·10^4 tolerances),
+    // stalled 1.5e-6 of the size short of the exit, restarted into the same triangle, and returned
+    // the normal of an earlier advance 0.05 rad from the exit facet: collide(A, B) and
+    // collide(B, A) chose a face in one order and an edge in the other (issue 21, oracle seeds
+    // 30651115 and 30662339). The cross product's rounding is relative to the triangle's area,
+    // whatever its length, so v stays perpendicular to the plane (tests/growth_distance_test.cpp:
+    // within 1e-11 of the extent, the barycentric form up to 3e-9 off). The weights stay
+    // barycentric: they only place the witnesses.
+    const Vec3 normal = ab.cross(ac);
+    const double normalSquared = normal.squaredNorm();
+    r.closest = normalSquared > 0 ? Vec3(normal * (normal.dot(a) / normalSquared)) : Vec3(a + v * ab + w * ac);
     r.count = 3;
     r.used = {ia, ib, ic, 0};
     r.weights = {1 - v - w, v, w, 0};

@@ -509,4 +509,13 @@ TEST_CASE("oracle: swapped queries agree where a feature's pieces are 1e-6..1e-4
     // normal the cast in B's frame converged to (the translations 5.2e-5·s and 5.7e-5·s apart). A
     // stall off any supporting facet now restarts the cast once (growth_distance.hpp).
     CHECK(runOracle(50005065, 1, -1, -1, -1).violations == 0);
+    // Found by scripts/fuzz --long (10^7 posed pairs): needle on needle (30651115) and needle on a
+    // cut corner (30662339), edge to edge. One order's growth-distance cast stalled on a long thin
+    // triangle of A − B (700 long, the origin 7e-4 from it), whose barycentric closest point was
+    // 7e-5 rad off perpendicular, 1.5e-6·s short of the exit, and kept the normal of an earlier
+    // advance, 0.05 rad from the exit facet (an edge–edge facet 1e-5 rad from a face of B): one
+    // order selected that face, the other an edge, normals 0.051 and 0.098 rad apart. The closest
+    // point is now the projection along the triangle's normal (growth_distance.cpp, triangleResult).
+    CHECK(runOracle(30651115, 1, -1, -1, -1).violations == 0);
+    CHECK(runOracle(30662339, 1, -1, -1, -1).violations == 0);
 }
