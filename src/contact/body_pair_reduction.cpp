@@ -141,12 +141,14 @@ int reduceBodyPairContacts(const BodyPairContact* contacts, int count, const Bod
         detail::planeBasis(axis, u, v);
         int n = 0;
         Vec2 low = Vec2::Constant(1e300), high = Vec2::Constant(-1e300);
+        double coordinateScale = 0;  // the largest world coordinate: the scale of its rounding
         for (int i = firstOfCluster[cluster]; i < count; ++i) {
             if (clusterOf[i] != cluster) continue;
             const Vec3 relative = contacts[i].position - first.position;
             planar[i] = Vec2(relative.dot(u), relative.dot(v));
             low = low.cwiseMin(planar[i]);
             high = high.cwiseMax(planar[i]);
+            coordinateScale = std::max(coordinateScale, contacts[i].position.cwiseAbs().maxCoeff());
             members[n++] = i;
         }
         const double extent = (high - low).norm();
@@ -189,7 +191,12 @@ int reduceBodyPairContacts(const BodyPairContact* contacts, int count, const Bod
         // 2. Near-duplicates: deepest first, each kept unless a kept one is within the merge
         //    distance. Candidates are found by a sweep along the first axis (the distance is
         //    tiny, so there are few): no quadratic scan of the cluster.
-        const double mergeDistance = kBodyPairMergeFraction * extent;
+        //    The distance is relative to the cluster's extent, with a floor at the rounding of
+        //    the points' world coordinates (1e-9 of the largest): a cluster whose only points are
+        //    one point reported twice (two parts of one body on the same edge of the other) has an
+        //    extent of rounding alone, and both copies are one row — duplicate rows make Dantzig's
+        //    matrix singular ("LCP internal error, s <= 0" in the composites under dWorldStep).
+        const double mergeDistance = std::max(kBodyPairMergeFraction * extent, 1e-9 * coordinateScale);
         std::copy(members, members + n, distinct);
         std::sort(distinct, distinct + n, [&](int a, int b) { return planar[a].x() < planar[b].x() || (planar[a].x() == planar[b].x() && a < b); });
         // Pairs closer than the merge distance: each as (loser, winner by `deeper`).
