@@ -5,6 +5,7 @@
 #include "contact/box_box.hpp"
 #include "box_growth_reference.hpp"
 #include "contact/collide_general.hpp"
+#include "box_poses.hpp"
 #include "contact_checks.hpp"
 #include "geometry/growth_distance.hpp"
 #include "geometry/minkowski.hpp"
@@ -16,30 +17,6 @@ using namespace gdc;
 using namespace gdc::testing;
 
 namespace {
-
-Mat3 randomRotation(std::mt19937& random) {
-    std::normal_distribution<double> normal;
-    Eigen::Quaterniond q(normal(random), normal(random), normal(random), normal(random));
-    return q.normalized().toRotationMatrix();
-}
-
-// A small rotation: about a random axis by an angle in [-limit, limit].
-Mat3 tilt(std::mt19937& random, double limit) {
-    std::normal_distribution<double> normal;
-    std::uniform_real_distribution<double> angle(-limit, limit);
-    return rotationAbout(Vec3(normal(random), normal(random), normal(random)).normalized(), angle(random));
-}
-
-Vec3 randomHalfExtents(std::mt19937& random) {
-    std::uniform_real_distribution<double> unit(0, 1), extent(0.05, 2.0);
-    const double kind = unit(random);
-    Vec3 half(extent(random), extent(random), extent(random));
-    if (kind < 0.2) half.setConstant(half.x());  // cube
-    else if (kind < 0.35) half[static_cast<int>(unit(random) * 3) % 3] = 0.002 + 0.01 * unit(random);  // plate
-    else if (kind < 0.45) half *= 10;  // large, against a box of the usual size
-    else if (kind < 0.55) half *= 0.05;  // small
-    return half;
-}
 
 // The largest differences found, relative to the pair's size.
 struct Differences {
@@ -82,67 +59,6 @@ bool compare(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose
         }
     }
     return same;
-}
-
-enum class Kind { RestingFace, FaceNearTolerance, EdgeEdge, VertexFace, Deep, NearlyTouching, Random, Count };
-
-// A pose of B against A (A at the identity) of the given kind; the caller moves both together.
-Pose poseOfKind(Kind kind, const Vec3& halfA, const Vec3& halfB, const Settings& settings, std::mt19937& random) {
-    std::uniform_real_distribution<double> unit(0, 1), symmetric(-1, 1);
-    const double size = halfA.norm() + halfB.norm();
-    auto restOnTop = [&](const Mat3& rotation, double sink) {
-        // B's lowest point along z just `sink` below A's top face, over a random point of that face.
-        const double lowest = (rotation.transpose() * Vec3::UnitZ()).cwiseAbs().dot(halfB);
-        const Vec3 over(symmetric(random) * halfA.x(), symmetric(random) * halfA.y(), 0);
-        return Pose{rotation, over + Vec3(0, 0, halfA.z() + lowest - sink)};
-    };
-    // A turned by `rotationA` and B by `rotationB` (about a vertical z), B's lowest support point
-    // above A's highest, moved by `offset` and sunk by `sink`; as B's pose in A's frame.
-    auto touching = [&](const Mat3& rotationA, const Mat3& rotationB, const Vec3& offset, double sink) {
-        const Vec3 up = Vec3::UnitZ();
-        const Vec3 highestA = rotationA * (rotationA.transpose() * up).cwiseSign().cwiseProduct(halfA);
-        const Vec3 lowestB = rotationB * -(rotationB.transpose() * up).cwiseSign().cwiseProduct(halfB);
-        const Vec3 position = highestA - lowestB + offset - sink * up;
-        return Pose{rotationA.transpose() * rotationB, rotationA.transpose() * position};
-    };
-    switch (kind) {
-        case Kind::RestingFace: {
-            const Mat3 yaw = rotationAbout(Vec3::UnitZ(), unit(random) < 0.5 ? 0.0 : symmetric(random) * M_PI);
-            return restOnTop(tilt(random, 0.01) * yaw, (symmetric(random) * 0.5 + 0.5) * 0.002 * size);
-        }
-        case Kind::FaceNearTolerance: {
-            const double angle = settings.angularTolerance * (1 + 0.2 * symmetric(random));
-            const Vec3 axis = rotationAbout(Vec3::UnitZ(), symmetric(random) * M_PI) * Vec3::UnitX();
-            return restOnTop(rotationAbout(axis, angle), unit(random) * 0.002 * size);
-        }
-        case Kind::EdgeEdge: {
-            // A with an edge up (about y), B with an edge down (about x) turned by a random yaw.
-            const Mat3 aEdgeUp = rotationAbout(Vec3::UnitY(), M_PI / 4 + 0.05 * symmetric(random));
-            const Mat3 edgeDown = rotationAbout(Vec3::UnitZ(), symmetric(random) * M_PI) *
-                                  rotationAbout(Vec3::UnitX(), M_PI / 4 + 0.05 * symmetric(random));
-            const double reach = 0.3 * std::min(halfA.minCoeff(), halfB.minCoeff());
-            return touching(aEdgeUp, edgeDown, Vec3(symmetric(random), symmetric(random), 0) * reach,
-                            unit(random) * 0.01 * size);
-        }
-        case Kind::VertexFace: {
-            const Mat3 cornerDown = Eigen::Quaterniond::FromTwoVectors(Vec3(1, 1, 1).normalized(), -Vec3::UnitZ())
-                                        .toRotationMatrix();
-            return restOnTop(tilt(random, 0.2) * cornerDown, unit(random) * 0.01 * size);
-        }
-        case Kind::Deep:
-            return Pose{randomRotation(random), Vec3(symmetric(random), symmetric(random), symmetric(random)) *
-                                                    (0.3 * halfA.minCoeff())};
-        case Kind::NearlyTouching: {
-            // Random orientations, B's lowest point over A's highest, from 0.5 % of the size apart
-            // to 0.5 % overlapping: every pair of features, touching or within a margin.
-            const double reach = 0.3 * std::min(halfA.minCoeff(), halfB.minCoeff());
-            return touching(randomRotation(random), randomRotation(random),
-                            Vec3(symmetric(random), symmetric(random), 0) * reach, 0.005 * size * symmetric(random));
-        }
-        default:
-            return Pose{randomRotation(random),
-                        Vec3(symmetric(random), symmetric(random), symmetric(random)) * (0.8 * size)};
-    }
 }
 
 }  // namespace
@@ -269,7 +185,7 @@ TEST_CASE("box-box path equals the general pipeline on random poses of every kin
     std::mt19937 random(20261123);
     std::uniform_real_distribution<double> unit(0, 1);
     Differences found;
-    int points = 0, kinds[int(Kind::Count)] = {}, touching[int(Kind::Count)] = {};
+    int points = 0, kinds[int(BoxPoseKind::Count)] = {}, touching[int(BoxPoseKind::Count)] = {};
     constexpr int kPoses = 105000;
     for (int trial = 0; trial < kPoses; ++trial) {
         const Vec3 halfA = randomHalfExtents(random), halfB = randomHalfExtents(random);
@@ -279,9 +195,9 @@ TEST_CASE("box-box path equals the general pipeline on random poses of every kin
         settings.margin = unit(random) < 0.5 ? 0.0 : unit(random) * 0.02 * (halfA.norm() + halfB.norm());
         settings.spanContactRegion = unit(random) < 0.5;
         if (unit(random) < 0.2) settings.angularTolerance = unit(random) * 0.7;
-        const Kind kind = static_cast<Kind>(trial % int(Kind::Count));
+        const BoxPoseKind kind = static_cast<BoxPoseKind>(trial % int(BoxPoseKind::Count));
         ++kinds[int(kind)];
-        const Pose relative = poseOfKind(kind, halfA, halfB, settings, random);
+        const Pose relative = boxPoseOfKind(kind, halfA, halfB, settings.angularTolerance, 0.8, random);
         // Both moved to a random place (A's frame is where the pipeline computes).
         const Pose world{randomRotation(random), Vec3(unit(random), unit(random), unit(random)) * 10};
         const Pose poseB{world.rotation * relative.rotation, world.apply(relative.position)};

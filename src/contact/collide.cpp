@@ -177,19 +177,13 @@ void featurePieces(const Polytope& polytope, const Feature& feature, const Vec3&
 // its own in `capFaces`, intersected one by one.
 FeatureGeometry featureGeometry(const Polytope& polytope, const Feature& feature, const SmallVector<int, 8>& pieces,
                                 const Pose& toCommon) {
-    if (feature.type == FeatureType::Face) {
-        FeatureGeometry geometry = faceGeometry(polytope, feature.index, toCommon);
+    if (feature.type == FeatureType::Face || feature.type == FeatureType::Edge) {
+        // A face's cap or an edge's chain: the same pieces of the one kind.
+        auto pieceGeometry = feature.type == FeatureType::Face ? faceGeometry : edgeGeometry;
+        FeatureGeometry geometry = pieceGeometry(polytope, feature.index, toCommon);
         if (pieces.size() > 1) {
             geometry.capFaces.reserve(pieces.size());
-            for (int face : pieces) geometry.capFaces.push_back(faceGeometry(polytope, face, toCommon));
-        }
-        return geometry;
-    }
-    if (feature.type == FeatureType::Edge) {
-        FeatureGeometry geometry = edgeGeometry(polytope, feature.index, toCommon);
-        if (pieces.size() > 1) {
-            geometry.capFaces.reserve(pieces.size());
-            for (int edge : pieces) geometry.capFaces.push_back(edgeGeometry(polytope, edge, toCommon));
+            for (int piece : pieces) geometry.capFaces.push_back(pieceGeometry(polytope, piece, toCommon));
         }
         return geometry;
     }

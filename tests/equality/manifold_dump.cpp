@@ -14,6 +14,7 @@
 // count or a feature differs, or when a value differs by more than 1e-9 of the pair's size.
 #include <gdcontact/collide.hpp>
 
+#include "box_poses.hpp"
 #include "geometry_oracles.hpp"
 
 #include <cmath>
@@ -25,31 +26,11 @@
 #include <vector>
 
 using namespace gdc;
+using testing::randomHalfExtents;
+using testing::randomRotation;
+using testing::tilt;
 
 namespace {
-
-Mat3 randomRotation(std::mt19937& random) {
-    std::normal_distribution<double> normal;
-    Eigen::Quaterniond q(normal(random), normal(random), normal(random), normal(random));
-    return q.normalized().toRotationMatrix();
-}
-
-Mat3 tilt(std::mt19937& random, double limit) {
-    std::normal_distribution<double> normal;
-    std::uniform_real_distribution<double> angle(-limit, limit);
-    return testing::rotationAbout(Vec3(normal(random), normal(random), normal(random)).normalized(), angle(random));
-}
-
-Vec3 randomHalfExtents(std::mt19937& random) {
-    std::uniform_real_distribution<double> unit(0, 1), extent(0.05, 2.0);
-    const double kind = unit(random);
-    Vec3 half(extent(random), extent(random), extent(random));
-    if (kind < 0.2) half.setConstant(half.x());
-    else if (kind < 0.35) half[static_cast<int>(unit(random) * 3) % 3] = 0.002 + 0.01 * unit(random);
-    else if (kind < 0.45) half *= 10;
-    else if (kind < 0.55) half *= 0.05;
-    return half;
-}
 
 Settings randomSettings(std::mt19937& random, double size) {
     std::uniform_real_distribution<double> unit(0, 1);
@@ -61,62 +42,10 @@ Settings randomSettings(std::mt19937& random, double size) {
     return settings;
 }
 
-// B's pose against A (A's frame) with A's and B's support extents `reachA`, `reachB` along z.
+// The box–box kinds, in box_poses.hpp's order (its Scattered, at 1.1 of the size, mostly separated).
 enum Kind { RestingFace, FaceNearTolerance, EdgeEdge, VertexFace, Deep, NearlyTouching, Separated, KindCount };
 const char* kKindNames[KindCount] = {"resting-face", "face-near-tolerance", "edge-edge", "vertex-face",
                                      "deep",         "nearly-touching",     "separated"};
-
-Pose boxPose(Kind kind, const Vec3& halfA, const Vec3& halfB, double angularTolerance, std::mt19937& random) {
-    std::uniform_real_distribution<double> unit(0, 1), symmetric(-1, 1);
-    const double size = halfA.norm() + halfB.norm();
-    auto restOnTop = [&](const Mat3& rotation, double sink) {
-        const double lowest = (rotation.transpose() * Vec3::UnitZ()).cwiseAbs().dot(halfB);
-        const Vec3 over(symmetric(random) * halfA.x(), symmetric(random) * halfA.y(), 0);
-        return Pose{rotation, over + Vec3(0, 0, halfA.z() + lowest - sink)};
-    };
-    auto touching = [&](const Mat3& rotationA, const Mat3& rotationB, const Vec3& offset, double sink) {
-        const Vec3 up = Vec3::UnitZ();
-        const Vec3 highestA = rotationA * (rotationA.transpose() * up).cwiseSign().cwiseProduct(halfA);
-        const Vec3 lowestB = rotationB * -(rotationB.transpose() * up).cwiseSign().cwiseProduct(halfB);
-        const Vec3 position = highestA - lowestB + offset - sink * up;
-        return Pose{rotationA.transpose() * rotationB, rotationA.transpose() * position};
-    };
-    switch (kind) {
-        case RestingFace: {
-            const Mat3 yaw = testing::rotationAbout(Vec3::UnitZ(), unit(random) < 0.5 ? 0.0 : symmetric(random) * M_PI);
-            return restOnTop(tilt(random, 0.01) * yaw, (symmetric(random) * 0.5 + 0.5) * 0.002 * size);
-        }
-        case FaceNearTolerance: {
-            const double angle = angularTolerance * (1 + 0.2 * symmetric(random));
-            const Vec3 axis = testing::rotationAbout(Vec3::UnitZ(), symmetric(random) * M_PI) * Vec3::UnitX();
-            return restOnTop(testing::rotationAbout(axis, angle), unit(random) * 0.002 * size);
-        }
-        case EdgeEdge: {
-            const Mat3 aEdgeUp = testing::rotationAbout(Vec3::UnitY(), M_PI / 4 + 0.05 * symmetric(random));
-            const Mat3 edgeDown = testing::rotationAbout(Vec3::UnitZ(), symmetric(random) * M_PI) *
-                                  testing::rotationAbout(Vec3::UnitX(), M_PI / 4 + 0.05 * symmetric(random));
-            const double reach = 0.3 * std::min(halfA.minCoeff(), halfB.minCoeff());
-            return touching(aEdgeUp, edgeDown, Vec3(symmetric(random), symmetric(random), 0) * reach,
-                            unit(random) * 0.01 * size);
-        }
-        case VertexFace: {
-            const Mat3 cornerDown = Eigen::Quaterniond::FromTwoVectors(Vec3(1, 1, 1).normalized(), -Vec3::UnitZ())
-                                        .toRotationMatrix();
-            return restOnTop(tilt(random, 0.2) * cornerDown, unit(random) * 0.01 * size);
-        }
-        case Deep:
-            return Pose{randomRotation(random),
-                        Vec3(symmetric(random), symmetric(random), symmetric(random)) * (0.3 * halfA.minCoeff())};
-        case NearlyTouching: {
-            const double reach = 0.3 * std::min(halfA.minCoeff(), halfB.minCoeff());
-            return touching(randomRotation(random), randomRotation(random),
-                            Vec3(symmetric(random), symmetric(random), 0) * reach, 0.005 * size * symmetric(random));
-        }
-        default:
-            return Pose{randomRotation(random),
-                        Vec3(symmetric(random), symmetric(random), symmetric(random)) * (1.1 * size)};
-    }
-}
 
 // One answer as written to the file: the pair type, the pair's size, then the manifold.
 struct Record {
@@ -230,7 +159,7 @@ int dump(const char* path) {
             const Polytope a = Polytope::box(halfA), b = Polytope::box(halfB);
             const Settings settings = randomSettings(random, halfA.norm() + halfB.norm());
             const Kind kind = Kind(trial % KindCount);
-            const Pose relative = boxPose(kind, halfA, halfB, settings.angularTolerance, random);
+            const Pose relative = testing::boxPoseOfKind(testing::BoxPoseKind(kind), halfA, halfB, settings.angularTolerance, 1.1, random);
             const Pose world{randomRotation(random), Vec3(unit(random), unit(random), unit(random)) * 10};
             const Pose poseB{world.rotation * relative.rotation, world.apply(relative.position)};
             write(out, kind, a.radius() + b.radius(), collide(a, world, b, poseB, settings));
