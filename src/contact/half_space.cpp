@@ -12,6 +12,7 @@
 #include "contact/collide_general.hpp"
 #include "contact/feature_intersection.hpp"
 #include "contact/gauss_map.hpp"
+#include "contact/rank_few.hpp"
 #include "contact/reduction.hpp"
 #include "geometry/small_vector.hpp"
 
@@ -30,7 +31,8 @@ namespace {
 struct PlaneInA {
     Vec3 m;
     double offset;
-    double depthOf(const Vec3& x) const { return offset - m.dot(x); }
+    // m·x as Eigen's dot evaluates it ((m₀x₀ + m₁x₁) + m₂x₂), in scalar code.
+    double depthOf(const Vec3& x) const { return offset - (m.x() * x.x() + m.y() * x.y() + m.z() * x.z()); }
 };
 
 // collideGeneral's change of frame, expression for expression (so to the bit), of the plane
@@ -45,9 +47,17 @@ PlaneInA planeInA(const UnitHalfSpace& b, const Pose& poseA) {
 // acts where points are dropped).
 class DirectPoints {
 public:
-    DirectPoints(const Vec3& m) : m_(m) {}
+    DirectPoints(const Vec3& m) : mx_(m.x()), my_(m.y()), mz_(m.z()) {}
+    // Scalar code throughout (here and in emit): the same IEEE operations, in the same order, as
+    // the Eigen expressions collideGeneral evaluates (x + 0.5·depth·m; a dot product is
+    // (x₀y₀ + x₁y₁) + x₂y₂; R·x + p row by row, see emit), so the same bits (manifold_dump) — but without the packet
+    // shuffles Eigen's SSE code spends on 3-vectors, which were the larger part of a box–plane
+    // call's lifting and emitting (callgrind: ~680 instructions for four points).
     void add(const Vec3& x, double depth) {
-        local_[count_] = x + 0.5 * depth * m_;
+        const double half = 0.5 * depth;
+        x_[count_] = x.x() + half * mx_;
+        y_[count_] = x.y() + half * my_;
+        z_[count_] = x.z() + half * mz_;
         depth_[count_++] = depth;
     }
     bool empty() const { return count_ == 0; }
@@ -59,58 +69,74 @@ public:
         // Here count_ ≤ maxCount (liftFeature's condition; a lone deepest vertex: 1 ≤ maxCount), so
         // the ranking keeps every point and only orders them.
         const int n = count_;
+        const Mat3& r = poseA.rotation;
         int chosen[kMaxManifoldPoints];
         int count = n;
         if (n == 1) {  // one point: nothing to order
             chosen[0] = 0;
-        } else if (n == 2) {
-            // rankContacts' choice for two points, comparison for comparison (rankAllOfFew's first
-            // slot: the point of largest identity among those within `tolerance` of the deepest;
-            // the identities are computed only where both are): no rule, no call.
-            double deepest = -INFINITY;
-            deepest = std::max(deepest, depth_[0]);
-            deepest = std::max(deepest, depth_[1]);
-            const double threshold = deepest - tolerance;
-            bool secondFirst = false;
-            if (depth_[1] >= threshold) {
-                if (depth_[0] < threshold) {
-                    secondFirst = true;
-                } else {
-                    const Vec3 identity = poseA.rotation.transpose() * identityDirection();
-                    secondFirst = local_[1].dot(identity) > local_[0].dot(identity);
-                }
-            }
-            chosen[0] = secondFirst ? 1 : 0;
-            chosen[1] = secondFirst ? 0 : 1;
         } else {
-            RankPoint ranked[kMaxManifoldPoints];
-            const RankingRule rule{maxCount, hysteresis, tolerance,
-                                   poseA.rotation.transpose() * identityDirection()};
-            Vec3 u, v;
-            planeBasis(normal, u, v);
-            for (int i = 0; i < n; ++i)
-                ranked[i] = {Vec2(local_[i].dot(u), local_[i].dot(v)), depth_[i], local_[i].dot(rule.identity)};
-            count = rankContacts(ranked, n, rule, chosen);
+            // rule.identity = Rᵀ·identityDirection(), column by column (for two points only where
+            // both are within the tolerance of the deepest).
+            const Vec3& world = identityDirection();
+            auto identityAxis = [&](int k) { return r(0, k) * world.x() + r(1, k) * world.y() + r(2, k) * world.z(); };
+            if (n == 2) {
+                // rankContacts' choice for two points, comparison for comparison (rankAllOfFew's first
+                // slot: the point of largest identity among those within `tolerance` of the deepest;
+                // the identities are computed only where both are): no rule, no call.
+                double deepest = -INFINITY;
+                deepest = std::max(deepest, depth_[0]);
+                deepest = std::max(deepest, depth_[1]);
+                const double threshold = deepest - tolerance;
+                bool secondFirst = false;
+                if (depth_[1] >= threshold) {
+                    if (depth_[0] < threshold) {
+                        secondFirst = true;
+                    } else {
+                        const double ix = identityAxis(0), iy = identityAxis(1), iz = identityAxis(2);
+                        secondFirst = x_[1] * ix + y_[1] * iy + z_[1] * iz > x_[0] * ix + y_[0] * iy + z_[0] * iz;
+                    }
+                }
+                chosen[0] = secondFirst ? 1 : 0;
+                chosen[1] = secondFirst ? 0 : 1;
+            } else {
+                const double ix = identityAxis(0), iy = identityAxis(1), iz = identityAxis(2);
+                RankPoint ranked[kMaxManifoldPoints];
+                const RankingRule rule{maxCount, hysteresis, tolerance, Vec3(ix, iy, iz)};
+                Vec3 u, v;
+                planeBasis(normal, u, v);
+                for (int i = 0; i < n; ++i)
+                    ranked[i] = {Vec2(x_[i] * u.x() + y_[i] * u.y() + z_[i] * u.z(),
+                                      x_[i] * v.x() + y_[i] * v.y() + z_[i] * v.z()),
+                                 depth_[i], x_[i] * ix + y_[i] * iy + z_[i] * iz};
+                // rankContacts' own dispatch for a few points, each kept (no prefix given).
+                count = n <= 4 ? rankAllOfFew(ranked, n, rule, chosen) : rankContacts(ranked, n, rule, chosen);
+            }
         }
-        manifold.normal = poseA.rotation * normal;
+        manifold.normal = r * normal;
         manifold.pointCount = count;
         double nonFinite = 0;  // emitManifold's overflow check
         ContactPoint* out = manifold.points.data();
+        const Vec3& p = poseA.position;
         for (int i = 0; i < count; ++i) {
             const int k = chosen[i];
-            const Vec3 position = poseA.apply(local_[k]);
+            const double lx = x_[k], ly = y_[k], lz = z_[k];
+            const double px = r(0, 0) * lx + r(0, 1) * ly + r(0, 2) * lz + p.x();
+            const double py = r(1, 0) * lx + r(1, 1) * ly + r(1, 2) * lz + p.y();
+            // Eigen's 3×3 product takes rows 0 and 1 as one packet and sums the third row's tail
+            // as r₂₀x + (r₂₁y + r₂₂z): the same grouping here, so the same bits.
+            const double pz = r(2, 0) * lx + (r(2, 1) * ly + r(2, 2) * lz) + p.z();
             const double depth = depth_[k];
-            out[i].position = position;
+            out[i].position = Vec3(px, py, pz);
             out[i].depth = depth;
-            nonFinite += (position * 0.0).sum() + depth * 0.0;
+            nonFinite += px * 0.0 + py * 0.0 + pz * 0.0 + depth * 0.0;
         }
         if (!(nonFinite == 0))
             throw InvalidInput("the contact overflows double precision (coordinates or offsets near 1e308)");
     }
 
 private:
-    const Vec3& m_;
-    Vec3 local_[kMaxManifoldPoints];
+    double mx_, my_, mz_;
+    double x_[kMaxManifoldPoints], y_[kMaxManifoldPoints], z_[kMaxManifoldPoints];
     double depth_[kMaxManifoldPoints];
     int count_ = 0;
 };

@@ -1,4 +1,5 @@
 #include "contact/reduction.hpp"
+#include "contact/rank_few.hpp"
 
 #include <algorithm>
 #include <array>
@@ -93,49 +94,6 @@ bool contains(const Vec2* hull, int size, const Vec2& p, double slack) {
 const Vec3& identityDirection() {
     static const Vec3 direction(0.7548776662466927, 0.5698402909980532, 0.4301597090019468);
     return direction;
-}
-
-// rankContacts for at most 4 points, all kept (a box face on a plane, two aligned boxes): the same
-// choices, slot by slot, without the general bookkeeping — the most common case by far.
-int rankAllOfFew(const RankPoint* points, int count, const RankingRule& rule, int* chosen) {
-    const double keep = 1 - rule.hysteresis;
-    int order[4] = {0, 1, 2, 3};
-    // Moves the point of largest identity among order[from..count) whose value reaches the
-    // threshold to position `from`.
-    auto pick = [&](int from, const double* value, double threshold) {
-        int best = from;
-        for (int k = from; k < count; ++k)
-            if (value[k] >= threshold && (value[best] < threshold || points[order[k]].identity > points[order[best]].identity))
-                best = k;
-        std::swap(order[from], order[best]);
-    };
-    double value[4];
-    double deepest = -INFINITY;
-    for (int k = 0; k < count; ++k) deepest = std::max(deepest, value[k] = points[k].depth);
-    pick(0, value, deepest - rule.tolerance);
-    if (count > 2) {
-        const Vec2 p0 = points[order[0]].planar;
-        double farthest = 0;
-        for (int k = 1; k < count; ++k) farthest = std::max(farthest, value[k] = (points[order[k]].planar - p0).squaredNorm());
-        pick(1, value, keep * keep * farthest);
-        if (count == 4) {
-            const Vec2 segment = points[order[1]].planar - p0;
-            double bestGain = 0;
-            for (int k = 2; k < 4; ++k)
-                bestGain = std::max(bestGain, value[k] = 0.5 * std::abs(cross2(segment, points[order[k]].planar - p0)));
-            if (bestGain > rule.tolerance * std::sqrt(farthest)) {
-                pick(2, value, keep * bestGain);
-            } else {  // collinear: the point farther from its nearest kept point
-                for (int k = 2; k < 4; ++k) {
-                    const Vec2& q = points[order[k]].planar;
-                    value[k] = std::min((q - p0).squaredNorm(), (q - points[order[1]].planar).squaredNorm());
-                }
-                pick(2, value, keep * keep * std::max(value[2], value[3]));
-            }
-        }
-    }
-    std::copy(order, order + count, chosen);
-    return count;
 }
 
 int rankContacts(const RankPoint* points, int count, const RankingRule& rule, int* chosen) {
