@@ -14,7 +14,7 @@ namespace gdc::detail {
 
 /// rankContacts for at most 4 points (count ≤ rule.maxCount, no given prefix), all kept: the same
 /// choices, slot by slot, without the general bookkeeping — the most common case by far.
-inline int rankAllOfFew(const RankPoint* points, int count, const RankingRule& rule, int* chosen) {
+[[gnu::always_inline]] inline int rankAllOfFew(const RankPoint* points, int count, const RankingRule& rule, int* chosen) {
     const double keep = 1 - rule.hysteresis;
     int order[4] = {0, 1, 2, 3};
     // Moves the point of largest identity among order[from..count) whose value reaches the
