@@ -226,30 +226,35 @@ bool penetrationCertified(const LiftedPoint& deepest, const FeatureGeometry& fea
         if (!(along > 1e-6 * m.norm())) return false;
         return pair.overlapAlong(m) / along <= deepest.depth + slack;
     };
-    auto isVertexOf = [&](const FeatureGeometry& feature) {
-        for (const Vec3& p : feature.points)
-            if ((planar(p) - q).squaredNorm() <= toleranceSquared) return true;
+    // Each feature's points projected once, for the vertex and the edge tests alike.
+    SmallVector<Vec2, 16> planarA, planarB;
+    for (const Vec3& p : a.points) planarA.push_back(planar(p));
+    for (const Vec3& p : b.points) planarB.push_back(planar(p));
+    auto isVertexOf = [&](const SmallVector<Vec2, 16>& points) {
+        for (const Vec2& p : points)
+            if ((p - q).squaredNorm() <= toleranceSquared) return true;
         return false;
     };
-    if (b.type == FeatureType::Face && isVertexOf(a) && certifies(-b.planeNormal)) return true;
-    if (a.type == FeatureType::Face && isVertexOf(b) && certifies(a.planeNormal)) return true;
+    if (b.type == FeatureType::Face && isVertexOf(planarA) && certifies(-b.planeNormal)) return true;
+    if (a.type == FeatureType::Face && isVertexOf(planarB) && certifies(a.planeNormal)) return true;
     // Edges of a feature whose projection passes through q (within the tolerance).
-    auto edgesThrough = [&](const FeatureGeometry& feature, SmallVector<Vec3, 4>& out) {
+    auto edgesThrough = [&](const FeatureGeometry& feature, const SmallVector<Vec2, 16>& points,
+                            SmallVector<Vec3, 4>& out) {
         const int count = static_cast<int>(feature.points.size());
         const int edges = count >= 3 ? count : count - 1;
         for (int i = 0; i < edges && out.size() < 2; ++i) {
-            const Vec3& p0 = feature.points[i];
-            const Vec3& p1 = feature.points[i + 1 == count ? 0 : i + 1];
-            const Vec2 e0 = planar(p0), d = planar(p1) - e0;
+            const int next = i + 1 == count ? 0 : i + 1;
+            const Vec2& e0 = points[i];
+            const Vec2 d = points[next] - e0;
             const double lengthSquared = d.squaredNorm();
             if (!(lengthSquared > 0)) continue;
             const double t = std::clamp((q - e0).dot(d) / lengthSquared, 0.0, 1.0);
-            if ((e0 + t * d - q).squaredNorm() <= toleranceSquared) out.push_back(p1 - p0);
+            if ((e0 + t * d - q).squaredNorm() <= toleranceSquared) out.push_back(feature.points[next] - feature.points[i]);
         }
     };
     SmallVector<Vec3, 4> edgesA, edgesB;
-    edgesThrough(a, edgesA);
-    edgesThrough(b, edgesB);
+    edgesThrough(a, planarA, edgesA);
+    edgesThrough(b, planarB, edgesB);
     for (const Vec3& edgeA : edgesA)
         for (const Vec3& edgeB : edgesB) {
             const Vec3 m = edgeA.cross(edgeB);
