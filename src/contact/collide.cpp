@@ -227,9 +227,16 @@ bool penetrationCertified(const LiftedPoint& deepest, const FeatureGeometry& fea
         return pair.overlapAlong(m) / along <= deepest.depth + slack;
     };
     // Each feature's points projected once, for the vertex and the edge tests alike.
+    // (Written through reserve()'s pointer: push_back would reload the vector after each store.)
     SmallVector<Vec2, 16> planarA, planarB;
-    for (const Vec3& p : a.points) planarA.push_back(planar(p));
-    for (const Vec3& p : b.points) planarB.push_back(planar(p));
+    auto project = [&](const FeatureGeometry& feature, SmallVector<Vec2, 16>& out) {
+        const std::size_t count = feature.points.size();
+        Vec2* written = out.reserve(count);
+        for (std::size_t i = 0; i < count; ++i) written[i] = planar(feature.points[i]);
+        out.setSize(count);
+    };
+    project(a, planarA);
+    project(b, planarB);
     auto isVertexOf = [&](const SmallVector<Vec2, 16>& points) {
         for (const Vec2& p : points)
             if ((p - q).squaredNorm() <= toleranceSquared) return true;

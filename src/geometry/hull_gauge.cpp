@@ -30,9 +30,7 @@ namespace {
 // The facet is the face translated, so the point is mapped back onto the face's plane and tested
 // against its edges (counter-clockwise seen from outside: inside is to the left of each), each by
 // more than 1e-9 of the pair's size: `inside` when within all, else `outside` has a bit for each
-// edge k (face vertex k to k + 1) it is not within. `support` is the other body's vertex: its first
-// vertex of least value along the face's normal (of B's face, n = R·n_B: A's along n), as the face
-// loops of hullGrowth found it.
+// edge k (face vertex k to k + 1) it is not within. `support` is the other body's vertex.
 struct FaceCheck {
     bool inside = false;
     int support = 0;
@@ -40,22 +38,34 @@ struct FaceCheck {
 };
 
 template <class Points>
-FaceCheck checkFaceExit(const MinkowskiDifference& pair, int face, bool ofA, int support, const Vec3& exit,
-                        const Points& verticesB, double size) {
+FaceCheck checkFaceExit(const MinkowskiDifference& pair, int face, bool ofA, const Vec3& exit, const Points& verticesB,
+                        double size) {
     FaceCheck check;
     const Polytope& polytope = ofA ? pair.a : pair.b;
     const Polytope::Face& f = polytope.faces()[face];
     const std::vector<Vec3>& vertices = polytope.vertices();
     const int* indices = polytope.faceVertices().data() + f.first;
-    check.support = support;
     Vec3 onFace;  // the point of the face (its own polytope's frame) that the exit point is the image of
     if (ofA) {
         // K's facet (face − c_A) + (c_B − v_B), v_B B's support along −n: p + c_A − c_B + v_B on A's face.
+        double lowestValue = INFINITY;
+        const int count = static_cast<int>(pair.b.vertices().size());
+        for (int i = 0; i < count; ++i) {
+            const double value = f.normal.dot(verticesB[i]);
+            if (value < lowestValue) lowestValue = value, check.support = i;
+        }
         onFace = exit + pair.centreA - pair.centreB + verticesB[check.support];
     } else {
         // K's facet (v_A − c_A) + (c_B − face), v_A A's support along −n (n = R·n_B): v_A − c_A + c_B − p
         // on B's face.
-        onFace = pair.bInA.applyInverse(pair.a.vertices()[check.support] - pair.centreA + pair.centreB - exit);
+        const Vec3 n = pair.bInA.rotation * f.normal;
+        double lowestValue = INFINITY;
+        const std::vector<Vec3>& verticesA = pair.a.vertices();
+        for (int i = 0, count = static_cast<int>(verticesA.size()); i < count; ++i) {
+            const double value = n.dot(verticesA[i]);
+            if (value < lowestValue) lowestValue = value, check.support = i;
+        }
+        onFace = pair.bInA.applyInverse(verticesA[check.support] - pair.centreA + pair.centreB - exit);
     }
     const double margin = 1e-9 * size;
     for (int k = 0; k < f.count; ++k) {
@@ -160,7 +170,6 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair) {
 
     int bestFace = -1;  // the face whose facet of K is the best so far, and whose it is
     bool bestFaceOfA = true;
-    int bestFaceSupport = 0;  // the other body's support vertex along the face's normal, negated
     auto finish = [&] {
         const double growth = exitAlong / exitSupport;
         result.valid = std::isfinite(growth) && growth > 0 && tiedNormals.norm() > 1e-6;
@@ -177,14 +186,10 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair) {
         const double along = alongA[f] = n.dot(d);
         if (!(along > 0)) continue;
         double lowestB = INFINITY;
-        int support = 0;
-        for (int i = 0; i < countB; ++i) {
-            const double value = n.dot(verticesB[i]);
-            if (value < lowestB) lowestB = value, support = i;
-        }
+        for (int i = 0; i < countB; ++i) lowestB = std::min(lowestB, n.dot(verticesB[i]));
         const double before = exitAlong;
         consider(along, facesA[f].offset - lowestB + along, [&] { return n; });
-        if (exitAlong != before) bestFace = f, bestFaceOfA = true, bestFaceSupport = support;
+        if (exitAlong != before) bestFace = f, bestFaceOfA = true;
     }
     // B's faces, turned into A's frame and negated (the Gauss map of −B): with n = R·n_B,
     // h_K(−n) = (max −n·A + n·c_A) + (offset_B + n·p − n·c_B) = offset_B + n·p − min n·A − n·d.
@@ -196,14 +201,10 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair) {
         const double along = alongB[f] = -n.dot(d);
         if (!(along > 0)) continue;
         double lowestA = INFINITY;
-        int support = 0;
-        for (int i = 0; i < countA; ++i) {
-            const double value = n.dot(verticesA[i]);
-            if (value < lowestA) lowestA = value, support = i;
-        }
+        for (int i = 0; i < countA; ++i) lowestA = std::min(lowestA, n.dot(verticesA[i]));
         const double before = exitAlong;
         consider(along, facesB[f].offset + n.dot(pair.bInA.position) - lowestA + along, [&] { return gaussB[f]; });
-        if (exitAlong != before) bestFace = f, bestFaceOfA = false, bestFaceSupport = support;
+        if (exitAlong != before) bestFace = f, bestFaceOfA = false;
     }
 
     // Where the ray's exit point p = d/σ lies inside the best face's facet of K (face ⊕ the other
@@ -214,7 +215,7 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair) {
     // around the other body's support vertex. If the best of those holds p (a parallelogram), σ is
     // final too; else every edge pair is enumerated below.
     if (bestFace < 0) return finish();
-    const FaceCheck check = checkFaceExit(pair, bestFace, bestFaceOfA, bestFaceSupport, d * (exitSupport / exitAlong), verticesB, size);
+    const FaceCheck check = checkFaceExit(pair, bestFace, bestFaceOfA, d * (exitSupport / exitAlong), verticesB, size);
     if (check.inside) return finish();
     const double faceSupport = exitSupport, faceAlong = exitAlong;
     const Vec3 faceNormals = tiedNormals;
