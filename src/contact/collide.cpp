@@ -425,14 +425,19 @@ Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b,
     const AngularTolerance angularTolerance(settings.angularTolerance);
     // With each feature its pieces: a face's cap, an edge's chain.
     SmallVector<int, 8> piecesA, piecesB;
-    auto selectFeatures = [&](const Vec3& n) {
+    // `supportsKnown`: the last support searches were along n and −n (overlapAlong(n)), so their
+    // vertices (pair.lastSupportA, lastSupportB) are what the searches here would return — the
+    // same directions, and a search started at its answer stays there — and two searches are spared.
+    auto selectFeatures = [&](const Vec3& n, bool supportsKnown) {
         const Vec3 directionB = bInA.rotation.transpose() * -n;
-        manifold.featureA = selectFeature(a, n, pair.supportA(n), angularTolerance);
-        manifold.featureB = selectFeature(b, directionB, pair.supportBInB(directionB), angularTolerance);
+        const int supportA = supportsKnown ? pair.lastSupportA : pair.supportA(n);
+        const int supportB = supportsKnown ? pair.lastSupportB : pair.supportBInB(directionB);
+        manifold.featureA = selectFeature(a, n, supportA, angularTolerance);
+        manifold.featureB = selectFeature(b, directionB, supportB, angularTolerance);
         featurePieces(a, manifold.featureA, n, angularTolerance, piecesA);
         featurePieces(b, manifold.featureB, directionB, angularTolerance, piecesB);
     };
-    selectFeatures(normal);
+    selectFeatures(normal, /*supportsKnown=*/!separatingAxis);  // the growth path ends in overlapAlong(normal)
     // Stage 1's check of the growth-distance normal against the faces around the two features
     // (the overhang fix); the features are then those of the corrected normal. It can only pick a
     // face whose overlap is below half the normal's, so a lower bound of every face's overlap (the
@@ -455,7 +460,7 @@ Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b,
     if (growth.valid && !noFaceClearlySmaller &&
         preferNearbyFaceNormal(pair, manifold.featureA, piecesA, manifold.featureB, piecesB, tolerance, normal, normalOverlap)) {
         if (normalOverlap < -settings.margin - tolerance) return Manifold{};  // a separating face
-        selectFeatures(normal);
+        selectFeatures(normal, false);
     }
     const FeatureGeometry featureA = featureGeometry(a, manifold.featureA, piecesA, Pose{});
     const FeatureGeometry featureB = featureGeometry(b, manifold.featureB, piecesB, bInA);
