@@ -72,6 +72,11 @@ public:
     const Vec3& centroid() const { return centroid_; }
     /// Largest distance from the centroid to a vertex.
     double radius() const { return radius_; }
+    /// Radius of a ball about the centroid inside the polytope: the smallest distance from the
+    /// centroid to a face's plane, each plane taken through the face's lowest vertex (so that a face
+    /// merged within the coplanar tolerance cannot overstate it). Every support value of the
+    /// polytope about its centroid is at least this: a lower bound on overlaps that costs nothing.
+    double inradius() const { return inradius_; }
     double volume() const { return volume_; }
     /// True for polytopes made by box(): their support mapping and growth distance take exact
     /// closed-form fast paths that give the same answers as the general algorithms.
@@ -104,6 +109,7 @@ private:
     std::vector<int> supportSeeds_;  // hill-climbing starts: supports of 26 fixed directions
     Vec3 centroid_ = Vec3::Zero();
     double radius_ = 0.0;
+    double inradius_ = 0.0;
     double volume_ = 0.0;
     bool isBox_ = false;
     Vec3 boxHalfExtents_ = Vec3::Zero();

@@ -226,30 +226,42 @@ bool penetrationCertified(const LiftedPoint& deepest, const FeatureGeometry& fea
         if (!(along > 1e-6 * m.norm())) return false;
         return pair.overlapAlong(m) / along <= deepest.depth + slack;
     };
-    auto isVertexOf = [&](const FeatureGeometry& feature) {
-        for (const Vec3& p : feature.points)
-            if ((planar(p) - q).squaredNorm() <= toleranceSquared) return true;
+    // Each feature's points projected once, for the vertex and the edge tests alike.
+    // (Written through reserve()'s pointer: push_back would reload the vector after each store.)
+    SmallVector<Vec2, 16> planarA, planarB;
+    auto project = [&](const FeatureGeometry& feature, SmallVector<Vec2, 16>& out) {
+        const std::size_t count = feature.points.size();
+        Vec2* written = out.reserve(count);
+        for (std::size_t i = 0; i < count; ++i) written[i] = planar(feature.points[i]);
+        out.setSize(count);
+    };
+    project(a, planarA);
+    project(b, planarB);
+    auto isVertexOf = [&](const SmallVector<Vec2, 16>& points) {
+        for (const Vec2& p : points)
+            if ((p - q).squaredNorm() <= toleranceSquared) return true;
         return false;
     };
-    if (b.type == FeatureType::Face && isVertexOf(a) && certifies(-b.planeNormal)) return true;
-    if (a.type == FeatureType::Face && isVertexOf(b) && certifies(a.planeNormal)) return true;
+    if (b.type == FeatureType::Face && isVertexOf(planarA) && certifies(-b.planeNormal)) return true;
+    if (a.type == FeatureType::Face && isVertexOf(planarB) && certifies(a.planeNormal)) return true;
     // Edges of a feature whose projection passes through q (within the tolerance).
-    auto edgesThrough = [&](const FeatureGeometry& feature, SmallVector<Vec3, 4>& out) {
+    auto edgesThrough = [&](const FeatureGeometry& feature, const SmallVector<Vec2, 16>& points,
+                            SmallVector<Vec3, 4>& out) {
         const int count = static_cast<int>(feature.points.size());
         const int edges = count >= 3 ? count : count - 1;
         for (int i = 0; i < edges && out.size() < 2; ++i) {
-            const Vec3& p0 = feature.points[i];
-            const Vec3& p1 = feature.points[i + 1 == count ? 0 : i + 1];
-            const Vec2 e0 = planar(p0), d = planar(p1) - e0;
+            const int next = i + 1 == count ? 0 : i + 1;
+            const Vec2& e0 = points[i];
+            const Vec2 d = points[next] - e0;
             const double lengthSquared = d.squaredNorm();
             if (!(lengthSquared > 0)) continue;
             const double t = std::clamp((q - e0).dot(d) / lengthSquared, 0.0, 1.0);
-            if ((e0 + t * d - q).squaredNorm() <= toleranceSquared) out.push_back(p1 - p0);
+            if ((e0 + t * d - q).squaredNorm() <= toleranceSquared) out.push_back(feature.points[next] - feature.points[i]);
         }
     };
     SmallVector<Vec3, 4> edgesA, edgesB;
-    edgesThrough(a, edgesA);
-    edgesThrough(b, edgesB);
+    edgesThrough(a, planarA, edgesA);
+    edgesThrough(b, planarB, edgesB);
     for (const Vec3& edgeA : edgesA)
         for (const Vec3& edgeB : edgesB) {
             const Vec3 m = edgeA.cross(edgeB);
@@ -377,7 +389,8 @@ void emitManifold(const LiftedPoints& points, const Vec3& normal, const Pose& co
 }
 
 Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
-                        const Settings& settings, bool alwaysConfirmDepth, bool enumerateSmallHulls) {
+                        const Settings& settings, bool alwaysConfirmDepth, bool enumerateSmallHulls,
+                        bool boundFaceOverlaps) {
     requireFinite(poseA, "A");
     requireFinite(poseB, "B");
     Manifold manifold;
@@ -386,7 +399,8 @@ Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b,
     const double size = a.radius() + b.radius();
     const double tolerance = 1e-9 * size;
     const Vec3 centreOffset = pair.centreB - pair.centreA;
-    if (separatedByEarlyOut(pair, centreOffset, centreOffset.norm(), size, settings.margin, tolerance)) return manifold;
+    const double centreDistance = centreOffset.norm();
+    if (separatedByEarlyOut(pair, centreOffset, centreDistance, size, settings.margin, tolerance)) return manifold;
 
     // Stage 1: contact normal from the growth distance (or, to measure the trade, the SAT's).
     const bool separatingAxis = settings.normalMethod == NormalMethod::SeparatingAxis;
@@ -411,24 +425,42 @@ Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b,
     const AngularTolerance angularTolerance(settings.angularTolerance);
     // With each feature its pieces: a face's cap, an edge's chain.
     SmallVector<int, 8> piecesA, piecesB;
-    auto selectFeatures = [&](const Vec3& n) {
+    // `supportsKnown`: the last support searches were along n and −n (overlapAlong(n)), so their
+    // vertices (pair.lastSupportA, lastSupportB) are what the searches here would return — the
+    // same directions, and a search started at its answer stays there — and two searches are spared.
+    auto selectFeatures = [&](const Vec3& n, bool supportsKnown) {
         const Vec3 directionB = bInA.rotation.transpose() * -n;
-        manifold.featureA = selectFeature(a, n, pair.supportA(n), angularTolerance);
-        manifold.featureB = selectFeature(b, directionB, pair.supportBInB(directionB), angularTolerance);
+        const int supportA = supportsKnown ? pair.lastSupportA : pair.supportA(n);
+        const int supportB = supportsKnown ? pair.lastSupportB : pair.supportBInB(directionB);
+        manifold.featureA = selectFeature(a, n, supportA, angularTolerance);
+        manifold.featureB = selectFeature(b, directionB, supportB, angularTolerance);
         featurePieces(a, manifold.featureA, n, angularTolerance, piecesA);
         featurePieces(b, manifold.featureB, directionB, angularTolerance, piecesB);
     };
-    selectFeatures(normal);
+    selectFeatures(normal, /*supportsKnown=*/!separatingAxis);  // the growth path ends in overlapAlong(normal)
     // Stage 1's check of the growth-distance normal against the faces around the two features
     // (the overhang fix); the features are then those of the corrected normal. It can only pick a
     // face whose overlap is below half the normal's, so a lower bound of every face's overlap (the
     // box pair has one) above that settles it without the search. The SAT's normal needs no check:
-    // no face overlaps less.
-    const bool noFaceClearlySmaller = growth.faceOverlapLowerBound >= kClearlySmallerOverlap * normalOverlap + tolerance;
+    // no face overlaps less. Any pair has one too: along a unit c the overlap is
+    // h_{A−c_A}(c) + h_{B−c_B}(−c) − c·d (d = c_B − c_A), and each support value about a centroid is
+    // at least the body's inradius, so every overlap is at least r_A + r_B − |d|. For two bodies
+    // resting face to face about their centroids (a stack of boxes, as hulls) that is the
+    // penetration itself, and the check — 11 % of an 8-vertex hull pair's query — never runs.
+    // Only where the supports are searched without a warm start (boxes, brute force): the check's
+    // searches move the hill climb's starting vertices, and a climb from elsewhere may stop at
+    // another vertex of a face the direction is normal to, which changes later values by a rounding.
+    const bool searchesWithoutState = (a.isBox() || static_cast<int>(a.vertices().size()) <= pair.bruteForceLimit) &&
+                                      (b.isBox() || static_cast<int>(b.vertices().size()) <= pair.bruteForceLimit);
+    const double faceOverlapLowerBound =
+        boundFaceOverlaps && searchesWithoutState
+            ? std::max(growth.faceOverlapLowerBound, a.inradius() + b.inradius() - centreDistance)
+            : growth.faceOverlapLowerBound;
+    const bool noFaceClearlySmaller = faceOverlapLowerBound >= kClearlySmallerOverlap * normalOverlap + tolerance;
     if (growth.valid && !noFaceClearlySmaller &&
         preferNearbyFaceNormal(pair, manifold.featureA, piecesA, manifold.featureB, piecesB, tolerance, normal, normalOverlap)) {
         if (normalOverlap < -settings.margin - tolerance) return Manifold{};  // a separating face
-        selectFeatures(normal);
+        selectFeatures(normal, false);
     }
     const FeatureGeometry featureA = featureGeometry(a, manifold.featureA, piecesA, Pose{});
     const FeatureGeometry featureB = featureGeometry(b, manifold.featureB, piecesB, bInA);

@@ -14,9 +14,12 @@ namespace gdc::detail {
 /// even where a certificate shows it cannot add a point: the path the certificate replaced, kept
 /// so that a test can prove the two equal. `enumerateSmallHulls` false makes stage 1 run the GJK ray
 /// cast even where the hull hook's enumeration applies (hull_gauge.hpp): what the test of the two
-/// compares against.
+/// compares against. `boundFaceOverlaps` false runs every check that a lower bound on the pair's
+/// overlaps (the bodies' inradii about their centroids, collide.cpp) shows cannot change the answer:
+/// the path the bounds replaced, kept so that a test can prove the two equal.
 Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
-                        const Settings& settings, bool alwaysConfirmDepth = false, bool enumerateSmallHulls = true);
+                        const Settings& settings, bool alwaysConfirmDepth = false, bool enumerateSmallHulls = true,
+                        bool boundFaceOverlaps = true);
 /// Gauss-map feature of A lifted onto the half-space, for any polytope (half_space.cpp: the
 /// half-space query with the general shape hooks).
 Manifold collideGeneral(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings);

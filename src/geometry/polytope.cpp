@@ -343,6 +343,11 @@ void Polytope::buildTopology(double size) {
     }
     radius_ = 0;
     for (const Vec3& v : vertices_) radius_ = std::max(radius_, (v - centroid_).norm());
+    inradius_ = INFINITY;
+    for (const Face& face : faces_)
+        for (int i = 0; i < face.count; ++i)
+            inradius_ = std::min(inradius_, face.normal.dot(vertices_[faceVertices_[face.first + i]] - centroid_));
+    inradius_ = std::max(inradius_, 0.0);
 
     // Seeds for hill climbing: the brute-force supports of the 26 directions of a cube's faces,
     // edges and corners (duplicates removed).
