@@ -132,3 +132,102 @@ TEST_CASE("a face with a repeated corner clips as the same face without it") {
         }
     }
 }
+
+namespace {
+
+// The clip as it was before its closed polygons reused the first point's distance for the closing
+// edge (commit "Clip: ..."), verbatim but for the buffers: the reference of the test below.
+std::vector<Vec2> formerClip(const std::vector<Vec2>& subject, const std::vector<Vec2>& clip, double tolerance) {
+    std::vector<Vec2> input = subject, output;
+    for (std::size_t e = 0; e < clip.size() && !input.empty(); ++e) {
+        const std::size_t n = input.size();
+        const Vec2& a = clip[e];
+        const Vec2 edge = clip[e + 1 == clip.size() ? 0 : e + 1] - a;
+        const double length = edge.norm();
+        if (!(length > 0)) continue;
+        output.clear();
+        const double slack = tolerance * length;
+        auto distance = [&](const Vec2& p) { return edge.x() * (p - a).y() - edge.y() * (p - a).x(); };
+        const bool closed = n >= 3;
+        double dp = distance(input[0]);
+        for (std::size_t i = 0; i < n; ++i) {
+            const Vec2& p = input[i];
+            if (dp >= -slack) output.push_back(p);
+            if ((!closed && i + 1 == n) || n == 1) break;
+            const Vec2& q = input[i + 1 == n ? 0 : i + 1];
+            const double dq = distance(q);
+            if ((dp < -slack && dq > slack) || (dp > slack && dq < -slack)) output.push_back(p + (q - p) * (dp / (dp - dq)));
+            dp = dq;
+        }
+        input = output;
+    }
+    return input;
+}
+
+}  // namespace
+
+// The clip's closed polygons reuse the first point's distance for the closing edge; it must give
+// the former clip's points, in the same order, bit for bit — on 200000 pairs: random convex
+// polygons, squares and rectangles turned by multiples of 45° or a little (box faces of resting
+// pairs), identical polygons (every vertex on an edge), polygons sharing an edge, with repeated
+// corners, segments and points as subjects, tolerance 0 or 1e-9.
+TEST_CASE("The clip gives the former clip's points in the same order, bit for bit") {
+    std::mt19937 random(2029);
+    std::uniform_real_distribution<double> unit(0, 1);
+    auto rectangle = [&](double w, double h, double turn, const Vec2& centre) {
+        std::vector<Vec2> corners;
+        for (const Vec2& c : {Vec2(-w, -h), Vec2(w, -h), Vec2(w, h), Vec2(-w, h)})
+            corners.push_back(centre + Vec2(std::cos(turn) * c.x() - std::sin(turn) * c.y(), std::sin(turn) * c.x() + std::cos(turn) * c.y()));
+        return corners;
+    };
+    long compared = 0, differing = 0, points = 0;
+    double largest = 0;
+    for (int trial = 0; trial < 200000; ++trial) {
+        const int kind = trial % 6;
+        std::vector<Vec2> subject, clip;
+        const Vec2 offset = 0.01 * Vec2(unit(random) - 0.5, unit(random) - 0.5);
+        if (kind == 0) {
+            subject = randomConvexPolygon(random, offset, 0.5 + unit(random));
+            clip = randomConvexPolygon(random, Vec2::Zero(), 0.5 + unit(random));
+        } else if (kind == 1) {  // a quarter- or eighth-turned square on a square (the octagon)
+            subject = rectangle(0.5, 0.5, (trial % 4) * 0.7853981633974483 + 1e-3 * (unit(random) - 0.5), offset);
+            clip = rectangle(0.5, 0.5, 0, Vec2::Zero());
+        } else if (kind == 2) {  // identical rectangles, or one shifted along an edge
+            clip = rectangle(0.5, 0.2 + unit(random), 0.3 * unit(random), Vec2::Zero());
+            subject = clip;
+            if (trial % 4 == 2)
+                for (Vec2& p : subject) p += (clip[1] - clip[0]) * 0.5;
+        } else if (kind == 3) {  // repeated corners
+            subject = rectangle(0.4 + unit(random), 0.4, unit(random), offset);
+            clip = randomConvexPolygon(random, Vec2::Zero(), 0.7);
+            subject.insert(subject.begin() + 1, subject[1]);
+            clip.push_back(clip[0]);
+        } else if (kind == 4) {  // a segment
+            subject = {Vec2(unit(random) - 0.5, unit(random) - 0.5) * 2, Vec2(unit(random) - 0.5, unit(random) - 0.5) * 2};
+            clip = rectangle(0.5, 0.5, unit(random), Vec2::Zero());
+        } else {  // a point, on a corner or anywhere
+            clip = rectangle(0.5, 0.3, unit(random), Vec2::Zero());
+            subject = {trial % 2 ? clip[2] : Vec2(unit(random) - 0.5, unit(random) - 0.5)};
+        }
+        const double tolerance = trial % 2 ? 1e-9 : 0.0;
+        const SmallVector<Vec2, 16> ours = clipConvexPolygon(subject.data(), static_cast<int>(subject.size()), clip.data(),
+                                                             static_cast<int>(clip.size()), tolerance);
+        const std::vector<Vec2> former = formerClip(subject, clip, tolerance);
+        ++compared;
+        bool same = ours.size() == former.size();
+        for (std::size_t i = 0; same && i < former.size(); ++i) {
+            largest = std::max(largest, (ours[i] - former[i]).cwiseAbs().maxCoeff());
+            same = ours[i].x() == former[i].x() && ours[i].y() == former[i].y();
+        }
+        points += static_cast<long>(former.size());
+        if (!same) {
+            ++differing;
+            INFO("trial " << trial << " kind " << kind);
+            CHECK(same);
+        }
+    }
+    WARN(compared << " clips compared (" << points << " points), " << differing << " differ, largest difference " << largest);
+    CHECK(differing == 0);
+    CHECK(largest == 0);
+    CHECK(points > 500000);
+}

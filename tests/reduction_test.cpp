@@ -443,3 +443,68 @@ TEST_CASE("The ranking from a given prefix chooses exactly what the body-pair fi
     CHECK(differing == 0);
     CHECK(compared >= 100000);
 }
+
+// Exact ties, where only the tie-breaks decide (the identity, then the lower index) and where the
+// order of the free points matters: regular octagons and squares (every gain equal), rectangles
+// with their edges' midpoints (collinear triples), repeated points, equal depths, gains spaced
+// just inside and just outside the hysteresis band, identities tied in pairs. The ranking (its free
+// list shifted without memmove, no prefix search) must choose what the former code chose
+// (tests/reduction_reference.hpp) — 120000 sets, every budget, with and without centroids.
+TEST_CASE("The ranking chooses what the former code chose on exact ties and hysteresis-band gains") {
+    std::mt19937 random(2028);
+    std::uniform_real_distribution<double> unit(0, 1);
+    long compared = 0, differing = 0;
+    for (int trial = 0; trial < 120000; ++trial) {
+        const int kind = trial % 5;
+        std::vector<detail::RankPoint> points;
+        const double scale = 0.1 + unit(random), turn = kind == 0 ? 0.0 : 6.283185307179586 * unit(random);
+        auto at = [&](double x, double y) {  // rotated by `turn` (0: axis-aligned, exact coordinates)
+            return Vec2(std::cos(turn) * x - std::sin(turn) * y, std::sin(turn) * x + std::cos(turn) * y);
+        };
+        if (kind <= 1) {  // a regular octagon or a square (k = 8 or 4 corners), exact when axis-aligned
+            const int corners = trial % 2 ? 8 : 4;
+            for (int i = 0; i < corners; ++i) {
+                const double angle = 6.283185307179586 * i / corners;
+                points.push_back({at(scale * std::cos(angle), scale * std::sin(angle)), 0.005, 0});
+            }
+        } else if (kind == 2) {  // a rectangle with its edges' midpoints, some points repeated
+            const double w = scale, h = scale * (0.2 + unit(random));
+            const Vec2 outline[8] = {at(-w, -h), at(0, -h), at(w, -h), at(w, 0), at(w, h), at(0, h), at(-w, h), at(-w, 0)};
+            for (const Vec2& q : outline) points.push_back({q, 0.005, 0});
+            if (trial % 3 == 0) points.push_back(points[2]), points.push_back(points[5]);
+        } else if (kind == 3) {  // collinear with duplicates
+            for (int i = 0; i < 4 + trial % 9; ++i) points.push_back({at(scale * std::floor(5 * unit(random)), 0), 0.005, 0});
+        } else {  // gains in the hysteresis band: an octagon whose radii differ by a fraction near 1 %
+            for (int i = 0; i < 8; ++i) {
+                const double angle = 6.283185307179586 * i / 8, radius = scale * (1 + 0.02 * (unit(random) - 0.5));
+                points.push_back({at(radius * std::cos(angle), radius * std::sin(angle)), 0.005 + 1e-12 * (i % 2), 0});
+            }
+        }
+        const int n = static_cast<int>(points.size());
+        for (auto& p : points)  // the identity: exact ties in pairs every third trial
+            p.identity = trial % 3 == 0 ? std::floor(p.planar.x() * 4) : p.planar.x() * 0.7548776662466927 + p.planar.y() * 0.5698402909980532;
+        if (trial % 4 == 1)
+            for (auto& p : points) p.depth = 0.005 + 0.002 * unit(random);
+        const double hysteresis = trial % 3 == 0 ? 0.0 : trial % 3 == 1 ? 0.01 : 0.1;
+        const Vec2 centroids[2] = {at(0.1 * scale * (unit(random) - 0.5), 0), at(scale * (unit(random) - 0.5), 0.5 * scale)};
+        for (int budget = 1; budget <= n + 1; ++budget) {
+            detail::RankingRule rule = ruleFor(budget, hysteresis);
+            rule.tolerance = trial % 2 ? 1e-9 : 0.0;
+            rule.centroids = centroids;
+            rule.centroidCount = (trial / 5) % 3;
+            int ours[kMaxManifoldPoints], former[kMaxManifoldPoints];
+            const int count = detail::rankContacts(points.data(), n, rule, ours);
+            const int formerCount = reference::rankContacts(points.data(), n, rule, former);
+            ++compared;
+            const bool same = count == formerCount && std::equal(ours, ours + count, former);
+            if (!same) {
+                ++differing;
+                INFO("trial " << trial << " kind " << kind << " points " << n << " budget " << budget);
+                CHECK(same);
+            }
+        }
+    }
+    WARN(compared << " rankings of tied sets compared, " << differing << " differ");
+    CHECK(differing == 0);
+    CHECK(compared >= 100000);
+}

@@ -52,18 +52,21 @@ double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x
         // Signed distance scaled by the edge length (> 0 inside); the slack is scaled to match.
         const double slack = tolerance * length;
         auto distance = [&](const Vec2& p) { return cross2(edge, p - a); };
-        const bool closed = n >= 3;
-        // Each point's distance is computed once and carried to the next step as `dp`.
-        double dp = distance(current[0]);
-        for (std::size_t i = 0; i < n; ++i) {
-            const Vec2& p = current[i];
+        // Each point's distance is computed once and carried to the next step as `dp`; a closed
+        // polygon's last step reuses the first point's (the same value the wrap recomputed).
+        const double first = distance(current[0]);
+        double dp = first;
+        auto step = [&](const Vec2& p, const Vec2& q, double dq) {
             if (dp >= -slack) output[count++] = p;
-            if ((!closed && i + 1 == n) || n == 1) break;
-            const Vec2& q = current[i + 1 == n ? 0 : i + 1];
-            const double dq = distance(q);
             if ((dp < -slack && dq > slack) || (dp > slack && dq < -slack))
                 output[count++] = p + (q - p) * (dp / (dp - dq));
             dp = dq;
+        };
+        for (std::size_t i = 0; i + 1 < n; ++i) step(current[i], current[i + 1], distance(current[i + 1]));
+        if (n >= 3) {
+            step(current[n - 1], current[0], first);
+        } else if (dp >= -slack) {  // a segment's or a point's last point: no closing edge
+            output[count++] = current[n - 1];
         }
         next.setSize(count);
         input = &next;
@@ -275,6 +278,13 @@ void intersectFeatures(const FeatureView& a, const FeatureView& b, const Vec3& n
             if (piecesA[i].meets(piecesB[j], tolerance))
                 intersectPieces(piecesA[i].piece, piecesB[j].piece, static_cast<int>(i), static_cast<int>(j), u, v,
                                 normal, tolerance, minimumDepth, spanRegion, true, out);
+}
+
+SmallVector<Vec2, 16> clipConvexPolygon(const Vec2* subject, int n, const Vec2* clip, int sides, double tolerance) {
+    Polygon2 subjectPolygon, clipPolygon, buffers[2];
+    for (int i = 0; i < n; ++i) subjectPolygon.push_back(subject[i]);
+    for (int i = 0; i < sides; ++i) clipPolygon.push_back(clip[i]);
+    return clipByConvexPolygon(subjectPolygon, clipPolygon, tolerance, buffers);
 }
 
 LiftedPoints intersectFeatures(const FeatureGeometry& a, const FeatureGeometry& b, const Vec3& normal,

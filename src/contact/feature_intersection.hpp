@@ -90,4 +90,10 @@ LiftedPoints intersectFeatures(const FeatureGeometry& a, const FeatureGeometry& 
 void intersectFeatures(const FeatureView& a, const FeatureView& b, const Vec3& normal, double tolerance,
                        double minimumDepth, bool spanRegion, LiftedPoints& out);
 
+/// Sutherland–Hodgman clip of `subject` (a convex counter-clockwise polygon of n ≥ 3 points, a
+/// segment or a point) by the half-planes left of each edge of the convex counter-clockwise
+/// polygon `clip`, exactly as intersectFeatures clips; exposed for its test (the result's points,
+/// in order).
+SmallVector<Vec2, 16> clipConvexPolygon(const Vec2* subject, int n, const Vec2* clip, int sides, double tolerance);
+
 }  // namespace gdc::detail
