@@ -7,12 +7,17 @@ solver_seeds_summary.csv), each run with the contenders gdc, ode-box, ode-convex
 variants (--contender gdc:maxContacts=N). Output (stdout, Markdown), per scene and stepper:
 - each contender's failed seeds of n with the Wilson 95 % interval, contacts per step and the whole
   step (collision + solver) on identical states divided by the best ODE option's and by the
-  default's (gdc);
-- per budget variant, paired by seed against the default and against the best ODE option: seeds
+  baseline's (--baseline);
+- per budget variant, paired by seed against the baseline (--baseline, default gdc) and against the best ODE option: seeds
   where the variant fails and the other stands / where the other fails and the variant stands, and
   the two-sided sign (McNemar exact) test's p over those discordant seeds.
 
+With --costs COST_DIR (a run of the same contenders with few seeds and more cost states and
+repetitions, e.g. --seeds 1 --cost-states 16 --cost-repetitions 7), the whole-step ratios come from
+that run's identical states instead (the best ODE option is still the one of RESULTS_DIRs' seeds).
+
 Usage: bench/solver_seeds/budget_table.py RESULTS_DIR... [--contenders gdc,gdc:maxContacts=6,...]
+                                          [--costs COST_DIR] [--baseline CONTENDER]
 """
 import argparse
 import csv
@@ -46,19 +51,19 @@ def sign_test(a, b):
 
 def load(dirs):
     runs = defaultdict(dict)     # (scene, stepper, contender) -> seed -> failed
-    contacts = defaultdict(list)
+    contacts = defaultdict(dict)  # (scene, stepper, contender) -> seed -> contacts per step
     sleep = defaultdict(dict)    # (scene, stepper, contender) -> seed -> seconds until all asleep (inf: never)
-    drift = defaultdict(list)
+    drift = defaultdict(dict)
     summary = {}
     for d in dirs:
         with open(os.path.join(d, "solver_seeds_runs.csv")) as f:
             for r in csv.DictReader(f):
                 key = (r["scene"], r["stepper"], r["contender"])
                 runs[key][int(r["seed"])] = r["failed"] == "1"
-                contacts[key].append(float(r["contacts_per_step"]))
+                contacts[key][int(r["seed"])] = float(r["contacts_per_step"])
                 t = float(r["sleep_time"])
                 sleep[key][int(r["seed"])] = t if t >= 0 else math.inf
-                drift[key].append(float(r["drift"]))
+                drift[key][int(r["seed"])] = float(r["drift"])
         with open(os.path.join(d, "solver_seeds_summary.csv")) as f:
             for r in csv.DictReader(f):
                 summary[(r["scene"], r["stepper"], r["contender"])] = r
@@ -77,17 +82,28 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("dirs", nargs="+")
     parser.add_argument("--contenders", default="gdc,gdc:maxContacts=6,gdc:maxContacts=5,ode-box,ode-convex")
+    parser.add_argument("--costs", help="a run whose identical-state costs replace RESULTS_DIRs'")
+    parser.add_argument("--baseline", default="gdc",
+                        help="the contender the variants are paired with and divided by (the budget in use)")
     args = parser.parse_args()
     order = args.contenders.split(",")
     runs, contacts, summary, sleep, drift = load(args.dirs)
+    whole_ms = {key: float(r["cost_whole_ms"]) for key, r in summary.items() if r["cost_whole_ms"]}
+    if args.costs:
+        whole_ms = {}
+        with open(os.path.join(args.costs, "solver_seeds_summary.csv")) as f:
+            for r in csv.DictReader(f):
+                if r["cost_whole_ms"]:
+                    whole_ms[(r["scene"], r["stepper"], r["contender"])] = float(r["cost_whole_ms"])
     scenes = []
     for (scene, _, _) in runs:
         if scene not in scenes:
             scenes.append(scene)
-    variants = [c for c in order if c.startswith("gdc:")]
+    base = args.baseline
+    variants = [c for c in order if c.startswith("gdc") and c != base]
 
     print("Cells: failed of n [Wilson 95 %] · contacts per step · whole step on identical states "
-          "÷ best ODE option (÷ the default, gdc with 8).\n")
+          f"÷ best ODE option (÷ {base}'s).\n")
     header = "| scene | stepper | best ODE | " + " | ".join(f"`{c}`" for c in order) + " |"
     print(header)
     print("|" + "---|" * (3 + len(order)))
@@ -99,8 +115,8 @@ def main():
                 continue
             best = next((summary[(scene, stepper, c)]["best_ode"] for c in present
                          if summary.get((scene, stepper, c), {}).get("best_ode")), "")
-            default_whole = float(summary[(scene, stepper, "gdc")]["cost_whole_ms"] or "nan") \
-                if (scene, stepper, "gdc") in summary else float("nan")
+            default_whole = whole_ms.get((scene, stepper, base), math.nan)
+            best_whole = whole_ms.get((scene, stepper, best), math.nan)
             cells = []
             for c in order:
                 if (scene, stepper, c) not in runs:
@@ -110,20 +126,19 @@ def main():
                 n, k = len(seeds), sum(seeds.values())
                 low, high = wilson(k, n)
                 s = summary[(scene, stepper, c)]
-                per_step = sum(contacts[(scene, stepper, c)]) / n
-                ratio = s["ratio_to_best_ode"]
-                whole = float(s["cost_whole_ms"] or "nan")
+                per_step = sum(contacts[(scene, stepper, c)].values()) / n
+                whole = whole_ms.get((scene, stepper, c), math.nan)
                 cell = f"{k}/{n} [{low * 100:.0f}–{high * 100:.0f} %] · {per_step:.1f}"
-                if ratio:
-                    cell += f" · {float(ratio):.2f}×"
-                    if c.startswith("gdc:") and default_whole == default_whole:
+                if whole == whole and best_whole == best_whole:
+                    cell += f" · {whole / best_whole:.2f}×"
+                    if c in variants and default_whole == default_whole:
                         cell += f" ({whole / default_whole:.2f}×)"
                 cells.append(cell)
             print(f"| {scene} | {STEPPER_LABEL[stepper]} | {best} | " + " | ".join(cells) + " |")
             for v in variants:
                 if (scene, stepper, v) not in runs:
                     continue
-                for other in ["gdc", best]:
+                for other in [base, best]:
                     if not other or (scene, stepper, other) not in runs:
                         continue
                     a_runs, b_runs = runs[(scene, stepper, v)], runs[(scene, stepper, other)]
@@ -140,10 +155,10 @@ def main():
     for scene, stepper, v, other, n, a, b, p in paired:
         if a or b:
             print(f"| {scene} | {STEPPER_LABEL[stepper]} | `{v}` | `{other}` | {n} | {a} | {b} | {p:.2g} |")
-    sleep_and_drift(runs, sleep, drift, order, variants)
+    sleep_and_drift(runs, sleep, drift, order, variants, base)
 
 
-def sleep_and_drift(runs, sleep, drift, order, variants):
+def sleep_and_drift(runs, sleep, drift, order, variants, base):
     print("\nDrift (the largest horizontal distance of a body from its start at the end, median over seeds, mm) "
           "and sleep (seeds where every body slept / n; for each budget variant against the default, paired "
           "by seed: slept later / sooner, a run that never slept counting as later than any, and the sign "
@@ -165,10 +180,10 @@ def sleep_and_drift(runs, sleep, drift, order, variants):
                 cells.append("–")
                 continue
             slept = sum(t < math.inf for t in sleep[key].values())
-            cells.append(f"{median(drift[key]) * 1000:.3g} · {slept}/{len(sleep[key])}")
+            cells.append(f"{median(drift[key].values()) * 1000:.3g} · {slept}/{len(sleep[key])}")
         pairs = []
         for v in variants:
-            a, b = sleep.get((scene, stepper, v)), sleep.get((scene, stepper, "gdc"))
+            a, b = sleep.get((scene, stepper, v)), sleep.get((scene, stepper, base))
             if not a or not b:
                 pairs.append("–")
                 continue
