@@ -89,10 +89,10 @@ struct Settings {
     /// 200 for the 1:20 plates under dWorldQuickStep; docs/algorithm.md "The budget over every
     /// scene"), with up to a quarter fewer rows than 8 on a box–box octagon (a stack's near-square
     /// octagon loses next to no area; a 45° turn's regular one keeps 85 %): the whole step on
-    /// identical states 0.8–0.95× that of 8 in stacks of boxes, plates and hulls. 8 keeps a box–box
-    /// octagon whole. 5 sinks a stack of 1:20 plates under dWorldQuickStep (20 iterations) in a
-    /// few seeds where 6, 8 and dBox sink in none, and lets stacked hexagonal prisms drift 3× as
-    /// far; 4 — what Bullet, PhysX and Box3D keep — in 32 of 200: the cut-off Gauss–Seidel holds a
+    /// identical states 0.78–0.98× that of 8 in stacks of boxes, plates and hulls. 8 keeps a box–box
+    /// octagon whole. 5 sinks a stack of 1:20 plates under dWorldQuickStep (20 iterations) in 5
+    /// of 200 seeds where 6, 8 and dBox sink in none, and lets stacked hexagonal prisms drift 2–3×
+    /// as far; 4 — what Bullet, PhysX and Box3D keep — in 32 of 200: the cut-off Gauss–Seidel holds a
     /// stack less firmly with fewer rows per pair, whichever are kept (ODE's own box collider
     /// limited to 4 sinks as deep); under dWorldStep, or with 30 iterations or more, 4 stands
     /// wherever 8 does and is the cheapest (dWorldStep's whole step 0.4–0.75× dBox's in stacks of
