@@ -181,7 +181,8 @@ def section(results, plot_link, level, reproduce=None):
                "is shared); *asleep* = median time until every body slept (s) and the fraction of seeds where they "
                "did; *msgs* = ODE messages (LCP internal errors); *identical states* = one step from the same body "
                "states (a reference run's states sampled at several times, copied into every contender's world), "
-               "collision + solver ms (fastest of the repetitions), and the whole step ÷ the best ODE option "
+               "collision + solver ms (fastest of the repetitions, each after one untimed step of the same contender "
+               "from the same state), and the whole step ÷ the best ODE option "
                "(the ODE contender failing the fewest seeds, the cheaper on a tie; where it fails more than half, "
                "the cheapest).\n")
     out.append("How to run: `scripts/run` runs the default mode (a few minutes on 2 cores: fewer seeds where a run "

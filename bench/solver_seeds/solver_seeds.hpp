@@ -142,8 +142,9 @@ struct CostResult {
 /// Runs `reference` free (seed `seed`), samples the body states at `states` times spread over the
 /// scene's duration, then for each state and each contender (interleaved, `repetitions` times)
 /// copies the state into the contender's world (positions, orientations, velocities, every body
-/// awake, dRandSetSeed(seed)) and times one collision pass and one step. Returns one result per
-/// contender, in order.
+/// awake, dRandSetSeed(seed)), steps once untimed (so that the timed step finds its own world in the
+/// caches, not the previous contender's), copies the state in again and times one collision pass
+/// and one step. Returns one result per contender, in order.
 std::vector<CostResult> measureCost(const SceneSpec& scene, const Stepper& stepper, const std::vector<Contender>& contenders,
                                     const Contender& reference, int seed, int states, int repetitions,
                                     const RunOptions& options = {});

@@ -41,7 +41,7 @@ static void checkSettings(void) {
     gdcSettings bad;
     memset(&defaults, 0xff, sizeof defaults);
     gdcDefaultSettings(&defaults);
-    CHECK(defaults.maxContacts == 8);
+    CHECK(defaults.maxContacts == 6);
     CHECK(defaults.contactOrder == GDC_ORDER_DEEPEST_LAST);
     CHECK(defaults.reductionHysteresis > 0.0 && defaults.reductionHysteresis <= 0.1);
     CHECK(defaults.maxRayCastIterations == 64);
