@@ -75,6 +75,15 @@ detail::LiftedPoints randomPolygon(std::mt19937& random, int n) {
     return points;
 }
 
+// The library's ranking and the former code's (reduction_reference.hpp) choose the same indices in
+// the same order.
+bool ranksAsFormer(const detail::RankPoint* points, int n, const detail::RankingRule& rule) {
+    int ours[kMaxManifoldPoints], former[kMaxManifoldPoints];
+    const int count = detail::rankContacts(points, n, rule, ours);
+    const int formerCount = reference::rankContacts(points, n, rule, former);
+    return count == formerCount && std::equal(ours, ours + count, former);
+}
+
 detail::RankingRule ruleFor(int maxCount, double hysteresis) {
     return detail::RankingRule{maxCount, hysteresis, 1e-12, detail::identityDirection()};
 }
@@ -492,11 +501,8 @@ TEST_CASE("The ranking chooses what the former code chose on exact ties and hyst
             rule.tolerance = trial % 2 ? 1e-9 : 0.0;
             rule.centroids = centroids;
             rule.centroidCount = (trial / 5) % 3;
-            int ours[kMaxManifoldPoints], former[kMaxManifoldPoints];
-            const int count = detail::rankContacts(points.data(), n, rule, ours);
-            const int formerCount = reference::rankContacts(points.data(), n, rule, former);
             ++compared;
-            const bool same = count == formerCount && std::equal(ours, ours + count, former);
+            const bool same = ranksAsFormer(points.data(), n, rule);
             if (!same) {
                 ++differing;
                 INFO("trial " << trial << " kind " << kind << " points " << n << " budget " << budget);

@@ -1,9 +1,16 @@
 // Random hulls and random poses of two polytopes that nearly touch, shared by the tests that prove
-// a faster path equal to the one it replaces (depth_confirmation_test, hull_gauge_test).
+// a faster path equal to the one it replaces (depth_confirmation_test, overlap_bounds_test,
+// hull_gauge_test), and the comparison of the two paths' manifolds they run.
 #pragma once
 
 #include "geometry/growth_distance.hpp"
 #include "geometry_oracles.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdint>
 
 #include <cmath>
 #include <random>
@@ -50,6 +57,64 @@ inline std::pair<Pose, Pose> randomTouchingPoses(std::mt19937& random, const Pol
     const detail::SeparationAlong apart = detail::separationAlong(a, b, bInA, direction, Settings{});
     if (apart.valid) bInA.position += (apart.distance - overlap(random) * (a.radius() + b.radius())) * direction;
     return {poseA, Pose{poseA.rotation * bInA.rotation, poseA.apply(bInA.position)}};
+}
+
+/// The hulls every faster general path is proven on: a cube and a plank as hulls (their faces
+/// overhang each other), a box, two random clouds (24 and 10 points) and a 300-point hull.
+struct ProvingHulls {
+    explicit ProvingHulls(std::mt19937& random)
+        : cubeHull(Polytope::fromPoints(boxCorners(Vec3(0.5, 0.5, 0.5)))),
+          plankHull(Polytope::fromPoints(boxCorners(Vec3(1.5, 0.3, 0.1)))),
+          box(Polytope::box(Vec3(0.4, 0.25, 0.6))),
+          rock(Polytope::fromPoints(randomCloud(random, 24, Vec3(0.5, 0.4, 0.3)))),
+          pebble(Polytope::fromPoints(randomCloud(random, 10, Vec3(0.2, 0.2, 0.2)))),
+          boulder(Polytope::fromPoints(randomCloud(random, 300, Vec3(0.6, 0.6, 0.6)))) {}
+    Polytope cubeHull, plankHull, box, rock, pebble, boulder;
+};
+
+/// Runs `fast` and `full` — two ways of calling the pipeline, (a, poseA, b, poseB, settings) →
+/// Manifold — on `count` random touching poses of a and b (every other one resting; overlaps up
+/// to `maxOverlap` of the pair's size, and up to 0.2 on every third pose where `deepEveryThird`),
+/// with the budget, margin and spanning varied per pose. Requires the same count and features and
+/// positions, depths and normal within `tolerance` of the pair's size; prints the largest difference
+/// under `what` and `name`, and checks that most poses touch.
+template <class Fast, class Full>
+void requireSameManifolds(const char* what, const char* name, const Polytope& a, const Polytope& b, int count,
+                          std::uint32_t seed, double maxOverlap, bool deepEveryThird, double tolerance, Fast fast,
+                          Full full) {
+    std::mt19937 random(seed);
+    int touching = 0;
+    double largestDifference = 0;
+    for (int i = 0; i < count; ++i) {
+        const bool resting = i % 2 == 0;
+        const auto [poseA, poseB] =
+            randomTouchingPoses(random, a, b, resting, deepEveryThird && i % 3 == 0 ? 0.2 : maxOverlap);
+        Settings settings;
+        settings.maxContacts = 1 + i % kMaxManifoldPoints;
+        settings.margin = i % 5 == 0 ? 0.01 * a.radius() : 0.0;
+        settings.spanContactRegion = i % 7 == 0;
+        const Manifold x = fast(a, poseA, b, poseB, settings);
+        const Manifold y = full(a, poseA, b, poseB, settings);
+        INFO(name << " pose " << i);
+        REQUIRE(x.pointCount == y.pointCount);
+        if (x.empty()) continue;
+        ++touching;
+        REQUIRE(x.featureA.type == y.featureA.type);
+        REQUIRE(x.featureA.index == y.featureA.index);
+        REQUIRE(x.featureB.type == y.featureB.type);
+        REQUIRE(x.featureB.index == y.featureB.index);
+        const double size = a.radius() + b.radius();
+        double difference = (x.normal - y.normal).norm();
+        for (int k = 0; k < x.pointCount; ++k) {
+            difference = std::max(difference, (x.points[k].position - y.points[k].position).norm() / size);
+            difference = std::max(difference, std::abs(x.points[k].depth - y.points[k].depth) / size);
+        }
+        largestDifference = std::max(largestDifference, difference);
+        REQUIRE(difference <= tolerance);
+    }
+    std::printf("%s, %s: %d poses (%d touching), largest difference %.3g x size\n", what, name, count, touching,
+                largestDifference);
+    CHECK(touching > count * 3 / 4);  // the poses exercise contact, not just separation
 }
 
 }  // namespace gdc::testing
