@@ -14,6 +14,7 @@
 #include "contact/collide_general.hpp"
 #include "contact/feature_intersection.hpp"
 #include "contact/gauss_map.hpp"
+#include "contact/pipeline.hpp"
 #include "geometry/growth_distance.hpp"
 #include "geometry/minkowski.hpp"
 #include "contact/reduction.hpp"
@@ -74,50 +75,53 @@ bool boxBoxApplies(const Polytope& a, const Polytope& b, const Settings& setting
            settings.angularTolerance >= 0 && settings.angularTolerance <= kMaxAngularTolerance;
 }
 
-void collideBoxBoxInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
-                       const Settings& settings, Manifold& manifold) {
-    auto general = [&] { manifold.assignUsed(collideGeneral(a, poseA, b, poseB, settings)); };
-    if (!poseA.isFinite() || !poseB.isFinite()) return general();  // it says what is wrong
-    // The empty answer a new Manifold is (the points beyond pointCount are never read).
-    manifold.normal = Vec3::UnitZ();
-    manifold.pointCount = 0;
-    manifold.featureA = Feature{};
-    manifold.featureB = Feature{};
-    const Pose bInA = poseA.relative(poseB);
-    const MinkowskiDifference pair(a, b, bInA, settings.bruteForceSupportLimit);
-    const double size = a.radius() + b.radius();
-    const double tolerance = 1e-9 * size;
-    const Vec3 centreOffset = pair.centreB - pair.centreA;
-    const double centreDistance = centreOffset.norm();
-    if (separatedByEarlyOut(pair, centreOffset, centreDistance, size, settings.margin, tolerance)) return;
+namespace {
 
-    // Stage 1: the closed-form growth distance of two boxes.
-    const BoxGrowth growth =
-        boxGrowth(a.boxHalfExtents(), b.boxHalfExtents(), bInA.rotation, centreOffset, centreDistance, size);
-    if (!growth.valid) return general();  // coincident centres: the general fallback normal
-    Vec3 normal = growth.normal;
-    double normalOverlap = pair.overlapAlong(normal);
-    if (normalOverlap < -settings.margin - tolerance) return;
-    // The overhang check can only act where the box pair's bound leaves room for a face of less
-    // than half the normal's overlap (deep overlap): then the general pipeline runs it.
-    if (!(growth.faceOverlapLowerBound >= kClearlySmallerOverlap * normalOverlap + tolerance)) return general();
+// The box pair's hooks for the one composition (pipeline.hpp): each stage in the boxes' closed
+// form; the rare branches (no growth-distance normal, the overhang check, an empty intersection, a
+// depth confirmation that may add a point) are delegated to the general hooks whole.
+struct BoxPairHooks {
+    static constexpr bool kDelegatesRareCases = true;
+    explicit BoxPairHooks(const Settings& settings) : settings(settings) {}
+    const Settings& settings;
+    LazyAngularTolerance angularTolerance{settings.angularTolerance};
 
-    // Stage 2: one feature per box (B's with −n in its own frame).
-    LazyAngularTolerance angularTolerance(settings.angularTolerance);
-    const Vec3 directionB = bInA.rotation.transpose() * -normal;
-    manifold.featureA = selectBoxFeature(normal, boxSupport(normal), angularTolerance);
-    manifold.featureB = selectBoxFeature(directionB, boxSupport(directionB), angularTolerance);
-    const BoxFeature featureA = boxFeature(a, manifold.featureA, nullptr);
-    const BoxFeature featureB = boxFeature(b, manifold.featureB, &bInA);
-    const FeatureView viewA = view(featureA), viewB = view(featureB);
-    refineNormal(normal, normalOverlap, viewA, viewB, pair);
+    // Non-finite poses: the general pipeline says what is wrong.
+    static bool acceptsPoses(const Pose& poseA, const Pose& poseB) { return poseA.isFinite() && poseB.isFinite(); }
 
-    // Stage 3: the intersection in the contact plane.
-    LiftedPoints kept;
-    intersectFeatures(viewA, viewB, normal, tolerance, -settings.margin, settings.spanContactRegion, kept);
-    if (kept.empty()) return general();  // its fallbacks: the ray cast's witnesses or the supports' gap
-    double deepest = -INFINITY;
-    for (const LiftedPoint& point : kept) deepest = std::max(deepest, point.depth);
+    // Stage 1: the closed-form growth distance of two boxes (coincident centres: the general
+    // pipeline's fallback normal). Its bound of the face overlaps settles the overhang check.
+    Stage1 growthNormal(const PairFrame& frame, const Vec3& centreOffset) const {
+        const BoxGrowth growth = boxGrowth(frame.a.boxHalfExtents(), frame.b.boxHalfExtents(), frame.bInA.rotation,
+                                           centreOffset, frame.centreDistance, frame.size);
+        Stage1 stage1;
+        if (!growth.valid) {
+            stage1.delegate = true;
+            return stage1;
+        }
+        stage1.normal = growth.normal;
+        stage1.normalOverlap = frame.pair.overlapAlong(growth.normal);
+        stage1.growthNormal = true;
+        stage1.faceOverlapLowerBound = growth.faceOverlapLowerBound;
+        return stage1;
+    }
+
+    // Stage 2: the Gauss-map feature from the signs and sizes of the direction's components.
+    void selectFeatures(const PairFrame& frame, const Vec3& normal, bool /*first*/, Manifold& manifold) {
+        const Vec3 directionB = frame.bInA.rotation.transpose() * -normal;
+        manifold.featureA = selectBoxFeature(normal, boxSupport(normal), angularTolerance);
+        manifold.featureB = selectBoxFeature(directionB, boxSupport(directionB), angularTolerance);
+    }
+    // Never called: kDelegatesRareCases hands the overhang check to the general hooks.
+    static bool preferNearbyFace(const PairFrame&, Vec3&, double&, Manifold&) { return false; }
+    static BoxFeature featureA(const PairFrame& frame, const Feature& feature) {
+        return boxFeature(frame.a, feature, nullptr);
+    }
+    static BoxFeature featureB(const PairFrame& frame, const Feature& feature) {
+        return boxFeature(frame.b, feature, &frame.bInA);
+    }
+    static bool refinesNormal() { return true; }
+
     // The depth confirmation: the general pipeline casts a ray along n through A − B where the
     // lifted points fall short of the supports' overlap, and adds a point where the cast's exit is
     // deeper than the deepest lifted point by more than 1 % of it. Where one box's face, edge or
@@ -127,12 +131,22 @@ void collideBoxBoxInto(const Polytope& a, const Pose& poseA, const Polytope& b, 
     // the cast's own inaccuracy (it stops outside A − B, within its tolerance). Otherwise (the
     // overlap reaches beyond the features, 22 of the 105000 poses of box_box_test) the general
     // pipeline runs and decides.
-    if (deepest < normalOverlap - tolerance &&
-        !exitsBy(a.boxHalfExtents(), b.boxHalfExtents(), bInA, normal, deepest + 2 * tolerance,
-                 2 * settings.rayCastTolerance * size))
-        return general();
-    const Vec3 centroids[2] = {pair.centreA, pair.centreB};
-    emitManifold(kept, normal, poseA, settings, tolerance, centroids, 2, manifold);
+    DepthCheck confirmDepth(const PairFrame& frame, LiftedPoints&, double deepest, const LiftedPoint*,
+                            const Vec3& normal, double, const BoxFeature&, const BoxFeature&) const {
+        return exitsBy(frame.a.boxHalfExtents(), frame.b.boxHalfExtents(), frame.bInA, normal,
+                       deepest + 2 * frame.tolerance, 2 * settings.rayCastTolerance * frame.size)
+                   ? DepthCheck::Confirmed
+                   : DepthCheck::Delegate;
+    }
+};
+
+}  // namespace
+
+void collideBoxBoxInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
+                       const Settings& settings, Manifold& manifold) {
+    BoxPairHooks hooks(settings);
+    if (composeStages(hooks, a, poseA, b, poseB, settings, manifold) == Composed::Delegate)
+        manifold.assignUsed(collideGeneral(a, poseA, b, poseB, settings));
 }
 
 Manifold collideBoxBox(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,

@@ -8,6 +8,7 @@
 #include "contact/gauss_map.hpp"
 #include "geometry/growth_distance.hpp"
 #include "contact/half_space.hpp"
+#include "contact/pipeline.hpp"
 #include "geometry/hull_gauge.hpp"
 #include "geometry/minkowski.hpp"
 #include "contact/reduction.hpp"
@@ -388,88 +389,99 @@ void emitManifold(const LiftedPoints& points, const Vec3& normal, const Pose& co
         throw InvalidInput("the contact overflows double precision (coordinates or offsets near 1e308)");
 }
 
-Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
-                        const Settings& settings, bool alwaysConfirmDepth, bool enumerateSmallHulls,
-                        bool boundFaceOverlaps) {
-    requireFinite(poseA, "A");
-    requireFinite(poseB, "B");
-    Manifold manifold;
-    const Pose bInA = poseA.relative(poseB);
-    const MinkowskiDifference pair(a, b, bInA, settings.bruteForceSupportLimit);
-    const double size = a.radius() + b.radius();
-    const double tolerance = 1e-9 * size;
-    const Vec3 centreOffset = pair.centreB - pair.centreA;
-    const double centreDistance = centreOffset.norm();
-    if (separatedByEarlyOut(pair, centreOffset, centreDistance, size, settings.margin, tolerance)) return manifold;
+namespace {
 
-    // Stage 1: contact normal from the growth distance (or, to measure the trade, the SAT's).
-    const bool separatingAxis = settings.normalMethod == NormalMethod::SeparatingAxis;
-    GrowthDistance growth;
-    Vec3 normal;
-    // The pair's overlap along `normal`, kept in step with it (several steps below need it).
-    double normalOverlap = 0;
-    if (separatingAxis) {
-        const SeparatingAxis axis = minimumOverlapAxis(pair);
-        normal = axis.normal, normalOverlap = axis.overlap;
-    } else {
-        // The hull's hook: two small polytopes enumerate K's facets (hull_gauge.hpp), the same σ and
-        // facet the ray cast converges to; large ones (and two boxes, in closed form) cast.
-        growth = enumerateSmallHulls && hullGaugeApplies(a, b) ? hullGrowth(pair)
-                                                              : growthDistance(pair, settings, /*needWitnesses=*/false);
-        normal = growth.valid ? growth.normal : minimumOverlapFaceNormal(pair);
-        normalOverlap = pair.overlapAlong(normal);
-    }
-    if (normalOverlap < -settings.margin - tolerance) return manifold;  // separated along n
-
-    // Stage 2: one Gauss-map feature per body (B's searched in its own frame with −n).
-    const AngularTolerance angularTolerance(settings.angularTolerance);
+// Any two polytopes' hooks for the one composition (pipeline.hpp): the general pipeline, the
+// reference every specialised hook is tested equal to. The flags choose the paths that the faster
+// ones replaced, kept so that tests can prove the two equal (collide_general.hpp).
+struct GeneralPairHooks {
+    static constexpr bool kDelegatesRareCases = false;  // it is where the others delegate to
+    GeneralPairHooks(const Settings& settings, bool alwaysConfirmDepth, bool enumerateSmallHulls, bool boundFaceOverlaps)
+        : settings(settings),
+          alwaysConfirmDepth(alwaysConfirmDepth),
+          enumerateSmallHulls(enumerateSmallHulls),
+          boundFaceOverlaps(boundFaceOverlaps) {}
+    const Settings& settings;
+    bool alwaysConfirmDepth;
+    bool enumerateSmallHulls;
+    bool boundFaceOverlaps;
+    bool separatingAxis = settings.normalMethod == NormalMethod::SeparatingAxis;
+    AngularTolerance angularTolerance{settings.angularTolerance};
     // With each feature its pieces: a face's cap, an edge's chain.
     SmallVector<int, 8> piecesA, piecesB;
-    // `supportsKnown`: the last support searches were along n and −n (overlapAlong(n)), so their
-    // vertices (pair.lastSupportA, lastSupportB) are what the searches here would return — the
-    // same directions, and a search started at its answer stays there — and two searches are spared.
-    auto selectFeatures = [&](const Vec3& n, bool supportsKnown) {
-        const Vec3 directionB = bInA.rotation.transpose() * -n;
+
+    static bool acceptsPoses(const Pose& poseA, const Pose& poseB) {
+        requireFinite(poseA, "A");
+        requireFinite(poseB, "B");
+        return true;
+    }
+
+    // Stage 1: contact normal from the growth distance (or, to measure the trade, the SAT's).
+    Stage1 growthNormal(const PairFrame& frame, const Vec3&) const {
+        const MinkowskiDifference& pair = frame.pair;
+        Stage1 stage1;
+        if (separatingAxis) {
+            const SeparatingAxis axis = minimumOverlapAxis(pair);
+            stage1.normal = axis.normal, stage1.normalOverlap = axis.overlap;
+            return stage1;  // no overhang check: no face overlaps less than the SAT's normal
+        }
+        // The hull's hook: two small polytopes enumerate K's facets (hull_gauge.hpp), the same σ and
+        // facet the ray cast converges to; large ones (and two boxes, in closed form) cast.
+        const GrowthDistance growth = enumerateSmallHulls && hullGaugeApplies(frame.a, frame.b)
+                                          ? hullGrowth(pair)
+                                          : growthDistance(pair, settings, /*needWitnesses=*/false);
+        stage1.normal = growth.valid ? growth.normal : minimumOverlapFaceNormal(pair);
+        stage1.normalOverlap = pair.overlapAlong(stage1.normal);
+        stage1.growthNormal = growth.valid;
+        // A lower bound of every face's overlap, for the overhang check. Any pair has one: along a
+        // unit c the overlap is h_{A−c_A}(c) + h_{B−c_B}(−c) − c·d (d = c_B − c_A), and each
+        // support value about a centroid is at least the body's inradius, so every overlap is at
+        // least r_A + r_B − |d|. For two bodies resting face to face about their centroids (a
+        // stack of boxes, as hulls) that is the penetration itself, and the check — 11 % of an
+        // 8-vertex hull pair's query — never runs. Only where the supports are searched without a
+        // warm start (boxes, brute force): the check's searches move the hill climb's starting
+        // vertices, and a climb from elsewhere may stop at another vertex of a face the direction
+        // is normal to, which changes later values by a rounding.
+        const Polytope& a = frame.a;
+        const Polytope& b = frame.b;
+        const bool searchesWithoutState =
+            (a.isBox() || static_cast<int>(a.vertices().size()) <= pair.bruteForceLimit) &&
+            (b.isBox() || static_cast<int>(b.vertices().size()) <= pair.bruteForceLimit);
+        stage1.faceOverlapLowerBound =
+            boundFaceOverlaps && searchesWithoutState
+                ? std::max(growth.faceOverlapLowerBound, a.inradius() + b.inradius() - frame.centreDistance)
+                : growth.faceOverlapLowerBound;
+        return stage1;
+    }
+
+    // Stage 2: the Gauss-map search from the support vertex. `first`: the last support searches
+    // were along n and −n (stage 1 ends in overlapAlong(n)), so their vertices (pair.lastSupportA,
+    // lastSupportB) are what the searches here would return — the same directions, and a search
+    // started at its answer stays there — and two searches are spared.
+    void selectFeatures(const PairFrame& frame, const Vec3& n, bool first, Manifold& manifold) {
+        const MinkowskiDifference& pair = frame.pair;
+        const bool supportsKnown = first && !separatingAxis;
+        const Vec3 directionB = frame.bInA.rotation.transpose() * -n;
         const int supportA = supportsKnown ? pair.lastSupportA : pair.supportA(n);
         const int supportB = supportsKnown ? pair.lastSupportB : pair.supportBInB(directionB);
-        manifold.featureA = selectFeature(a, n, supportA, angularTolerance);
-        manifold.featureB = selectFeature(b, directionB, supportB, angularTolerance);
-        featurePieces(a, manifold.featureA, n, angularTolerance, piecesA);
-        featurePieces(b, manifold.featureB, directionB, angularTolerance, piecesB);
-    };
-    selectFeatures(normal, /*supportsKnown=*/!separatingAxis);  // the growth path ends in overlapAlong(normal)
-    // Stage 1's check of the growth-distance normal against the faces around the two features
-    // (the overhang fix); the features are then those of the corrected normal. It can only pick a
-    // face whose overlap is below half the normal's, so a lower bound of every face's overlap (the
-    // box pair has one) above that settles it without the search. The SAT's normal needs no check:
-    // no face overlaps less. Any pair has one too: along a unit c the overlap is
-    // h_{A−c_A}(c) + h_{B−c_B}(−c) − c·d (d = c_B − c_A), and each support value about a centroid is
-    // at least the body's inradius, so every overlap is at least r_A + r_B − |d|. For two bodies
-    // resting face to face about their centroids (a stack of boxes, as hulls) that is the
-    // penetration itself, and the check — 11 % of an 8-vertex hull pair's query — never runs.
-    // Only where the supports are searched without a warm start (boxes, brute force): the check's
-    // searches move the hill climb's starting vertices, and a climb from elsewhere may stop at
-    // another vertex of a face the direction is normal to, which changes later values by a rounding.
-    const bool searchesWithoutState = (a.isBox() || static_cast<int>(a.vertices().size()) <= pair.bruteForceLimit) &&
-                                      (b.isBox() || static_cast<int>(b.vertices().size()) <= pair.bruteForceLimit);
-    const double faceOverlapLowerBound =
-        boundFaceOverlaps && searchesWithoutState
-            ? std::max(growth.faceOverlapLowerBound, a.inradius() + b.inradius() - centreDistance)
-            : growth.faceOverlapLowerBound;
-    const bool noFaceClearlySmaller = faceOverlapLowerBound >= kClearlySmallerOverlap * normalOverlap + tolerance;
-    if (growth.valid && !noFaceClearlySmaller &&
-        preferNearbyFaceNormal(pair, manifold.featureA, piecesA, manifold.featureB, piecesB, tolerance, normal, normalOverlap)) {
-        if (normalOverlap < -settings.margin - tolerance) return Manifold{};  // a separating face
-        selectFeatures(normal, false);
+        manifold.featureA = selectFeature(frame.a, n, supportA, angularTolerance);
+        manifold.featureB = selectFeature(frame.b, directionB, supportB, angularTolerance);
+        featurePieces(frame.a, manifold.featureA, n, angularTolerance, piecesA);
+        featurePieces(frame.b, manifold.featureB, directionB, angularTolerance, piecesB);
     }
-    const FeatureGeometry featureA = featureGeometry(a, manifold.featureA, piecesA, Pose{});
-    const FeatureGeometry featureB = featureGeometry(b, manifold.featureB, piecesB, bInA);
-    const FeatureView viewA = view(featureA), viewB = view(featureB);
-    if (!separatingAxis) refineNormal(normal, normalOverlap, viewA, viewB, pair);  // SAT's is exact already
+    // Stage 1's check of the growth-distance normal against the faces around the two features.
+    bool preferNearbyFace(const PairFrame& frame, Vec3& normal, double& normalOverlap, const Manifold& manifold) const {
+        return preferNearbyFaceNormal(frame.pair, manifold.featureA, piecesA, manifold.featureB, piecesB,
+                                      frame.tolerance, normal, normalOverlap);
+    }
+    FeatureGeometry featureA(const PairFrame& frame, const Feature& feature) const {
+        return featureGeometry(frame.a, feature, piecesA, Pose{});
+    }
+    FeatureGeometry featureB(const PairFrame& frame, const Feature& feature) const {
+        return featureGeometry(frame.b, feature, piecesB, frame.bInA);
+    }
+    bool refinesNormal() const { return !separatingAxis; }  // SAT's is exact already
 
-    // Stage 3: intersection in the contact plane, each point with its own depth.
-    LiftedPoints kept;
-    intersectFeatures(viewA, viewB, normal, tolerance, -settings.margin, settings.spanContactRegion, kept);
     // The deepest contact must carry the whole penetration along n — the distance B must move
     // along n to clear A, the exit of the ray along n through A − B (ODE's contract: moving by
     // 0.96·depth still touches, 1.04·depth separates). The intersection misses it when the
@@ -477,43 +489,45 @@ Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b,
     // touch when the bodies are shrunk to the growth distance drift apart at full size), or when
     // the deepest overlap lies beyond the selected features (a face–edge pair whose edge dips
     // below a neighbouring face). The supports' overlap along n bounds that distance from above, so
-    // the ray cast runs only when the lifted points fall short of it, and its point is added only
-    // when it is deeper by more than 1 % (ODE's contract allows 4 %; the slack absorbs the ray
-    // cast's accuracy on the nearly coplanar facets of A − B that near-parallel faces make, where
-    // it is a few times the tilt times the size rather than the cast's tolerance). The added
-    // point lies midway between the two touching witnesses, so its points on A and B are
-    // position ± depth/2·n like every contact; it is never a silently missing contact.
-    constexpr double kDepthSlack = 0.01;
-    double deepest = -INFINITY;
-    const LiftedPoint* deepestPoint = nullptr;
-    for (const LiftedPoint& point : kept)
-        if (point.depth > deepest) deepest = point.depth, deepestPoint = &point;
-    const double slack = (std::isfinite(deepest) ? kDepthSlack * std::abs(deepest) : 0.0) + tolerance;
-    // The ray cast converges to within its tolerance of the exit: the certificate keeps that much
-    // on the safe side, so that it skips the cast only where the cast could not have added a point.
-    const double certifiedSlack = slack - 2 * settings.rayCastTolerance * size;
-    if (deepest < normalOverlap - tolerance &&
-        !(!alwaysConfirmDepth && deepestPoint && penetrationCertified(*deepestPoint, featureA, featureB, normal, pair, certifiedSlack, tolerance))) {
-        const SeparationAlong separation = separationAlong(pair, normal, settings);
-        if (kept.empty() && separation.valid && separation.distance < -settings.margin - tolerance)
-            return Manifold{};  // apart along n by more than the margin
+    // the composition asks only when the lifted points fall short of it, and the ray cast's point
+    // is added only when it is deeper by more than 1 % (ODE's contract allows 4 %; the slack
+    // absorbs the ray cast's accuracy on the nearly coplanar facets of A − B that near-parallel
+    // faces make, where it is a few times the tilt times the size rather than the cast's
+    // tolerance). The added point lies midway between the two touching witnesses, so its points on
+    // A and B are position ± depth/2·n like every contact; it is never a silently missing contact.
+    DepthCheck confirmDepth(const PairFrame& frame, LiftedPoints& kept, double deepest,
+                            const LiftedPoint* deepestPoint, const Vec3& normal, double,
+                            const FeatureGeometry& featureA, const FeatureGeometry& featureB) const {
+        constexpr double kDepthSlack = 0.01;
+        const double slack = (std::isfinite(deepest) ? kDepthSlack * std::abs(deepest) : 0.0) + frame.tolerance;
+        // The ray cast converges to within its tolerance of the exit: the certificate keeps that much
+        // on the safe side, so that it skips the cast only where the cast could not have added a point.
+        const double certifiedSlack = slack - 2 * settings.rayCastTolerance * frame.size;
+        if (!alwaysConfirmDepth && deepestPoint &&
+            penetrationCertified(*deepestPoint, featureA, featureB, normal, frame.pair, certifiedSlack,
+                                 frame.tolerance))
+            return DepthCheck::Confirmed;
+        const SeparationAlong separation = separationAlong(frame.pair, normal, settings);
+        if (kept.empty() && separation.valid && separation.distance < -settings.margin - frame.tolerance)
+            return DepthCheck::Separated;  // apart along n by more than the margin
         if (separation.valid && separation.distance > deepest + slack) {
             const Vec3 middle = 0.5 * (separation.witnessA + separation.witnessB);
             Vec3 u, v;
             planeBasis(normal, u, v);
             kept.push_back({middle, separation.distance, Vec2(middle.dot(u), middle.dot(v))});
         }
+        return DepthCheck::Confirmed;
     }
-    if (kept.empty()) {
-        // The line along n misses A − B: the pair is apart, by at most the margin (the supports'
-        // overlap along n passed the check above) — a speculative contact at the supports' gap.
-        const Vec3 middle = 0.5 * (a.vertices()[pair.supportA(normal)] + pair.vertexB(pair.supportB(-normal)));
-        const double gap = normalOverlap;
-        if (gap < -settings.margin - tolerance) return Manifold{};
-        kept.push_back({middle, gap, Vec2::Zero()});
-    }
-    const Vec3 centroids[2] = {pair.centreA, pair.centreB};
-    emitManifold(kept, normal, poseA, settings, tolerance, centroids, 2, manifold);
+};
+
+}  // namespace
+
+Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
+                        const Settings& settings, bool alwaysConfirmDepth, bool enumerateSmallHulls,
+                        bool boundFaceOverlaps) {
+    Manifold manifold;
+    GeneralPairHooks hooks(settings, alwaysConfirmDepth, enumerateSmallHulls, boundFaceOverlaps);
+    composeStages(hooks, a, poseA, b, poseB, settings, manifold);  // never delegates
     return manifold;
 }
 
