@@ -1,13 +1,13 @@
-// Two boxes through the general pipeline's steps (collide.cpp, collideGeneral), each in the box's
-// closed form where the general one searches or allocates: the growth distance over the 15 axes
-// without vector temporaries, the Gauss-map feature from the signs and sizes of the direction's
-// components, faces and edges straight from the box's numbering and intersected in fixed arrays,
-// and, for the depth confirmation, the exit of the ray along n through A − B from the 15 slabs of
-// that zonotope instead of a GJK ray cast. Every decision is made on the same numbers the general
-// pipeline compares (the same expressions on the same inputs), so both return the same manifold,
-// bit for bit on box_box_test's poses; where the general pipeline takes a rare branch (no
-// growth-distance normal, the overhang check, an empty intersection, a depth confirmation that
-// may add a point) the pair goes to it whole.
+// Two boxes through the one composition of the stages (pipeline.hpp, composeStages), with hooks in
+// the box's closed form where the general hooks (collide.cpp) search or allocate: the growth
+// distance over the 15 axes without vector temporaries, the Gauss-map feature from the signs and
+// sizes of the direction's components, faces and edges straight from the box's numbering and
+// intersected in fixed arrays, and, for the depth confirmation, the exit of the ray along n through
+// A − B from the 15 slabs of that zonotope instead of a GJK ray cast. Every decision is made on the
+// same numbers the general hooks compare (the same expressions on the same inputs), so both return
+// the same manifold, bit for bit on box_box_test's poses; where the general pipeline takes a rare
+// branch (no growth-distance normal, the overhang check, an empty intersection, a depth
+// confirmation that may add a point) the hooks delegate and the pair goes to it whole.
 #include "contact/box_box.hpp"
 
 #include "geometry/box_shape.hpp"

@@ -1,5 +1,6 @@
-// The contact query: the paper's three stages, composed. Everything is computed in A's frame
-// (precision far from the origin) and mapped to the world at the end.
+// The contact query: the general hooks of the paper's three stages (composed once, pipeline.hpp)
+// and collide()'s dispatch. Everything is computed in A's frame (precision far from the origin)
+// and mapped to the world at the end.
 #include <gdcontact/collide.hpp>
 
 #include "contact/box_box.hpp"
