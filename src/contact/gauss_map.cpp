@@ -165,24 +165,4 @@ void capVertices(const Polytope& polytope, const SmallVector<int, 8>& cap, Small
     }
 }
 
-int featureVertices(const Polytope& polytope, const Feature& feature, const int** indices, int* storage) {
-    switch (feature.type) {
-        case FeatureType::Vertex:
-            storage[0] = feature.index;
-            *indices = storage;
-            return 1;
-        case FeatureType::Edge:
-            storage[0] = polytope.edges()[feature.index].tail;
-            storage[1] = polytope.edges()[feature.index].head;
-            *indices = storage;
-            return 2;
-        case FeatureType::Face:
-        default: {
-            const Polytope::Face& face = polytope.faces()[feature.index];
-            *indices = polytope.faceVertices().data() + face.first;
-            return face.count;
-        }
-    }
-}
-
 }  // namespace gdc::detail
