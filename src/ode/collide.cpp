@@ -386,10 +386,13 @@ const gdc::detail::AngularTolerance& angularToleranceOf(detail::ThreadCache& cac
 void queryInto(const Polytope& a, const Pose& poseA, const detail::ThreadCache::PlaneSlot& plane, const HalfSpace& b,
                const Settings& settings, detail::ThreadCache& cache, Manifold& out) {
     if (gdc::detail::halfSpaceFastPathApplies(a, settings)) {
-        if (plane.normalised)
-            return gdc::detail::collideHalfSpaceInto(
-                a, poseA, gdc::detail::UnitHalfSpace{plane.normalisedNormal, plane.normalisedOffset}, settings,
-                angularToleranceOf(cache, settings.angularTolerance), out);
+        if (plane.normalised) {
+            const gdc::detail::UnitHalfSpace unit{plane.normalisedNormal, plane.normalisedOffset};
+            // A box's feature takes no AngularTolerance (its lazy bounds): the lookup only for hulls.
+            if (a.isBox()) return gdc::detail::collideHalfSpaceInto(a, poseA, unit, settings, out);
+            return gdc::detail::collideHalfSpaceInto(a, poseA, unit, settings,
+                                                     angularToleranceOf(cache, settings.angularTolerance), out);
+        }
         return gdc::detail::collideHalfSpaceInto(a, poseA, b, settings, out);
     }
     out.assignUsed(gdc::collide(a, poseA, b, settings));
