@@ -291,8 +291,9 @@ void collideBox(const Polytope& a, const Pose& poseA, const PlaneInA& plane, con
                       manifold);
 }
 
+// `given`: AngularTolerance(settings.angularTolerance), when the caller keeps it; else made here.
 void collideSmallHull(const Polytope& a, const Pose& poseA, const PlaneInA& plane, const Settings& settings,
-                      Manifold& manifold) {
+                      const AngularTolerance* given, Manifold& manifold) {
     const double tolerance = 1e-9 * a.radius();
     const Query query{a, plane, settings, tolerance, -settings.margin - tolerance};
     // One loop: every vertex's height m·x along the plane's normal, and the lowest one — the
@@ -310,7 +311,7 @@ void collideSmallHull(const Polytope& a, const Pose& poseA, const PlaneInA& plan
     if (plane.offset - lowest < query.keepDepth) return;
 
     const Vec3 normal = -plane.m;
-    const AngularTolerance angularTolerance(settings.angularTolerance);
+    const AngularTolerance angularTolerance = given ? *given : AngularTolerance(settings.angularTolerance);
     manifold.featureA = selectFeature(a, normal, deepest, angularTolerance);
     manifold.featureB = {FeatureType::Face, 0};
     SmallVector<int, 8> cap;
@@ -377,14 +378,15 @@ namespace {
 
 // Both entry points below, once A's pose is known finite.
 void collideNormalised(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b, const Settings& settings,
-                       Manifold& out) {
+                       const AngularTolerance* angularTolerance, Manifold& out) {
     const PlaneInA plane = planeInA(b, poseA);
     // The empty answer a new Manifold is (the points beyond pointCount are never read).
     out.normal = Vec3::UnitZ();
     out.pointCount = 0;
     out.featureA = Feature{};
     out.featureB = Feature{};
-    a.isBox() ? collideBox(a, poseA, plane, settings, out) : collideSmallHull(a, poseA, plane, settings, out);
+    a.isBox() ? collideBox(a, poseA, plane, settings, out)
+              : collideSmallHull(a, poseA, plane, settings, angularTolerance, out);
 }
 
 }  // namespace
@@ -392,13 +394,19 @@ void collideNormalised(const Polytope& a, const Pose& poseA, const UnitHalfSpace
 void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings,
                           Manifold& out) {
     requireFinite(poseA);  // first: a bad pose is reported before a bad plane
-    collideNormalised(a, poseA, normalised(b), settings, out);
+    collideNormalised(a, poseA, normalised(b), settings, nullptr, out);
 }
 
 void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b, const Settings& settings,
                           Manifold& out) {
     requireFinite(poseA);
-    collideNormalised(a, poseA, b, settings, out);
+    collideNormalised(a, poseA, b, settings, nullptr, out);
+}
+
+void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b, const Settings& settings,
+                          const AngularTolerance& angularTolerance, Manifold& out) {
+    requireFinite(poseA);
+    collideNormalised(a, poseA, b, settings, &angularTolerance, out);
 }
 
 Manifold collideGeneral(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings) {

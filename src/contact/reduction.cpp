@@ -103,11 +103,6 @@ bool contains(const Vec2* hull, int size, const Vec2& p, double slack) {
 
 }  // namespace
 
-const Vec3& identityDirection() {
-    static const Vec3 direction(0.7548776662466927, 0.5698402909980532, 0.4301597090019468);
-    return direction;
-}
-
 int rankContacts(const RankPoint* points, int count, const RankingRule& rule, int* chosen) {
     const int fixed = rule.fixedCount;
     if (fixed == 0 && count <= 4 && count <= rule.maxCount) return rankAllOfFew(points, count, rule, chosen);

@@ -371,12 +371,28 @@ int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int ma
 // pair takes gdc::collide itself. tests/ode/adapter_equality_test.cpp checks the adapter against
 // gdc::collide on random poses of every pair type.
 // A plane's normalisation, made once per plane (planeSlot), where the core accepted it.
+// AngularTolerance(radians), the thread's copy while `radians` is the same to the bit.
+const gdc::detail::AngularTolerance& angularToleranceOf(detail::ThreadCache& cache, double radians) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &radians, sizeof bits);
+    if (!cache.angularToleranceKnown || cache.angularToleranceBits != bits) {
+        cache.angularTolerance = gdc::detail::AngularTolerance(radians);
+        cache.angularToleranceBits = bits;
+        cache.angularToleranceKnown = true;
+    }
+    return cache.angularTolerance;
+}
+
 void queryInto(const Polytope& a, const Pose& poseA, const detail::ThreadCache::PlaneSlot& plane, const HalfSpace& b,
-               const Settings& settings, Manifold& out) {
+               const Settings& settings, detail::ThreadCache& cache, Manifold& out) {
     if (gdc::detail::halfSpaceFastPathApplies(a, settings)) {
-        if (plane.normalised)
-            return gdc::detail::collideHalfSpaceInto(
-                a, poseA, gdc::detail::UnitHalfSpace{plane.normalisedNormal, plane.normalisedOffset}, settings, out);
+        if (plane.normalised) {
+            const gdc::detail::UnitHalfSpace unit{plane.normalisedNormal, plane.normalisedOffset};
+            // A box's feature takes no AngularTolerance (its lazy bounds): the lookup only for hulls.
+            if (a.isBox()) return gdc::detail::collideHalfSpaceInto(a, poseA, unit, settings, out);
+            return gdc::detail::collideHalfSpaceInto(a, poseA, unit, settings,
+                                                     angularToleranceOf(cache, settings.angularTolerance), out);
+        }
         return gdc::detail::collideHalfSpaceInto(a, poseA, b, settings, out);
     }
     out.assignUsed(gdc::collide(a, poseA, b, settings));
@@ -446,7 +462,7 @@ decltype(auto) collideLimited(const Settings& settings, int maxContacts, Collide
     const HalfSpace halfSpace{plane.unit, plane.raw[3]};
     const Manifold& manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) -> const Manifold& {
         return queryThrough(
-            pairCache, o1, o2, cache.scratch, [&](Manifold& out) { queryInto(polytope, pose, plane, halfSpace, pairSettings, out); },
+            pairCache, o1, o2, cache.scratch, [&](Manifold& out) { queryInto(polytope, pose, plane, halfSpace, pairSettings, cache, out); },
             [&](PairCache& entry, Manifold& carried) -> const Manifold& {
                 return gdc::collideInto(polytope, pose, halfSpace, pairSettings, entry, carried);
             });

@@ -9,6 +9,8 @@
 #include <gdcontact/polytope.hpp>
 #include <gdcontact/settings.hpp>
 
+#include "contact/gauss_map.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -86,6 +88,13 @@ struct ThreadCache {
 
     std::uint64_t settingsGeneration = 0;  // 0: never copied
     Settings settings;
+
+    // The Gauss-map tolerance (cosine, sine) of the last Settings::angularTolerance a hull–plane
+    // query used, kept while the radians stay the same to the bit (angularToleranceOf): its series
+    // cost every such query ~45 instructions (callgrind, issue 23).
+    bool angularToleranceKnown = false;
+    std::uint64_t angularToleranceBits = 0;
+    gdc::detail::AngularTolerance angularTolerance{0.0};
 
     // Where collide() keeps an answer that is not in a pair cache (no cache, or a carried one)
     // until it is written out: one per thread, so that a call constructs no 0.6 KB Manifold.

@@ -231,3 +231,34 @@ TEST_CASE("adapter: contacts equal the core's answer with DeepestFirst and a mar
     settings.margin = 0.01;
     checkEveryPairType(settings);
 }
+
+TEST_CASE("adapter: a hull on a plane follows each install()'s angular tolerance on the same thread", "[ode][equality]") {
+    // The adapter keeps the hull–plane query's AngularTolerance per thread (issue 23); switching
+    // the installed tolerance back and forth must give gdc::collide's answer for the new one
+    // each time, not the kept one. The pose is chosen where the two tolerances disagree: a
+    // box-shaped hull tilted 0.1 rad onto an edge and sunk so that its whole face is below the
+    // plane (the face, within 0.2 rad: four contacts; the edge, not within 0.05: two).
+    OdeSession session(true, Settings{});
+    gdc::ode::setPairCacheEnabled(false);
+    const std::vector<dReal> corners = boxCorners(Vec3(0.45, 0.35, 0.3));
+    dGeomID hull = gdc::ode::createConvex(0, corners.data(), 8);
+    dGeomID ground = dCreatePlane(0, 0, 0, 1, 0);
+    const double tilt = 0.1;
+    const double lowest = 0.35 * std::sin(tilt) + 0.3 * std::cos(tilt);  // the lower edge's height below the centre
+    setPose(hull, Pose{rotationAbout(Vec3::UnitX(), tilt), Vec3(0, 0, lowest - 0.1)});
+    Settings narrow, wide;
+    narrow.angularTolerance = 0.05;
+    wide.angularTolerance = 0.2;
+    REQUIRE(expectedContacts(hull, ground, 16, narrow).size() != expectedContacts(hull, ground, 16, wide).size());
+    Comparison result;
+    for (const Settings* settings : {&narrow, &wide, &narrow, &wide, &wide, &narrow}) {
+        gdc::ode::install(*settings);
+        compare(hull, ground, 16, *settings, result);
+        compare(ground, hull, 16, *settings, result);
+    }
+    CHECK(result.calls == 12);
+    CHECK(result.mismatches == 0);
+    CHECK(result.largest == 0.0);
+    for (dGeomID g : {hull, ground}) dGeomDestroy(g);
+    gdc::ode::setPairCacheEnabled(true);
+}
