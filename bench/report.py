@@ -82,7 +82,7 @@ STANDS_IN_THE_WAY = {
     "box_box_face_4": "As face 8, plus the reduction from 8 points to 4 that keeps the deepest and the largest area "
                       "(dBoxBox's cullPoints is a cheaper angular pick).",
     "box_box_edge_edge": "The growth distance is 20 % of the call (its 15 axes cost about what dBoxBox's whole SAT "
-                         "does), the box path's own composition 25 %; feature selection, normal refinement and the "
+                         "does), the composition of the stages around it (composeStages with the box hooks) 25 %; feature selection, normal refinement and the "
                          "segment crossing come on top.",
     "box_box_separated": "The general pipeline's early outs (bounding spheres, then the centre line as a separating "
                          "axis) reproduced exactly; a separating-axis early out over the 15 axes would be cheaper on "
@@ -92,7 +92,7 @@ STANDS_IN_THE_WAY = {
                  "six ODE accessor calls and the per-thread caches. The core (about 1.07 k) writes 4 world points "
                  "with the overflow check (230), builds the plane basis and planar coordinates (180) and ranks "
                  "(160): the midway points and the ranking are the method's, which ODE does not compute.",
-    "convex_plane": "As box–plane; for a hull the Gauss-map selection (selectFeature, about 460 instructions) "
+    "convex_plane": "As box–plane; for a hull the Gauss-map selection (selectFeature, about 450 instructions: 3 neighbour-edge and 9 face tests for a cube) "
                     "replaces the box's closed form.",
     "hull8_libccd": "libccd's MPR returns one point. Of the full manifold's 15 k (core): the ranking of 8 points "
                     "3.9 k, the clip 2.4 k, the growth distance by enumerating A − B's facets (hullGrowth) 2.85 k, "
