@@ -112,8 +112,7 @@ struct BoxPairHooks {
         manifold.featureA = selectBoxFeature(normal, boxSupport(normal), angularTolerance);
         manifold.featureB = selectBoxFeature(directionB, boxSupport(directionB), angularTolerance);
     }
-    // Never called: kDelegatesRareCases hands the overhang check to the general hooks.
-    static bool preferNearbyFace(const PairFrame&, Vec3&, double&, Manifold&) { return false; }
+    // No preferNearbyFace: with kDelegatesRareCases the composition never asks for the overhang check.
     static BoxFeature featureA(const PairFrame& frame, const Feature& feature) {
         return boxFeature(frame.a, feature, nullptr);
     }
@@ -132,7 +131,7 @@ struct BoxPairHooks {
     // overlap reaches beyond the features, 22 of the 105000 poses of box_box_test) the general
     // pipeline runs and decides.
     DepthCheck confirmDepth(const PairFrame& frame, LiftedPoints&, double deepest, const LiftedPoint*,
-                            const Vec3& normal, double, const BoxFeature&, const BoxFeature&) const {
+                            const Vec3& normal, const BoxFeature&, const BoxFeature&) const {
         return exitsBy(frame.a.boxHalfExtents(), frame.b.boxHalfExtents(), frame.bInA, normal,
                        deepest + 2 * frame.tolerance, 2 * settings.rayCastTolerance * frame.size)
                    ? DepthCheck::Confirmed

@@ -497,7 +497,7 @@ struct GeneralPairHooks {
     // tolerance). The added point lies midway between the two touching witnesses, so its points on
     // A and B are position ± depth/2·n like every contact; it is never a silently missing contact.
     DepthCheck confirmDepth(const PairFrame& frame, LiftedPoints& kept, double deepest,
-                            const LiftedPoint* deepestPoint, const Vec3& normal, double,
+                            const LiftedPoint* deepestPoint, const Vec3& normal,
                             const FeatureGeometry& featureA, const FeatureGeometry& featureB) const {
         constexpr double kDepthSlack = 0.01;
         const double slack = (std::isfinite(deepest) ? kDepthSlack * std::abs(deepest) : 0.0) + frame.tolerance;

@@ -11,12 +11,13 @@
 //   static constexpr bool kDelegatesRareCases — true: the overhang check and an empty intersection
 //       are not handled but returned as Composed::Delegate (the caller runs the general hooks);
 //   bool acceptsPoses(poseA, poseB)            — false: Delegate (or throw the input's error);
-//   Stage1 growthNormal(frame)                 — the normal, its overlap and a bound for the check;
+//   Stage1 growthNormal(frame, centreOffset)   — the normal, its overlap and a bound for the check;
 //   void selectFeatures(frame, normal, first, manifold) — manifold.featureA/B for normal;
-//   bool preferNearbyFace(frame, normal, normalOverlap, manifold) — the overhang check proper;
+//   bool preferNearbyFace(frame, normal, normalOverlap, manifold) — the overhang check proper (only
+//       where kDelegatesRareCases is false);
 //   featureA(frame, feature), featureB(frame, feature) — the features in A's frame (view()-able);
 //   bool refinesNormal()                       — false where the normal is exact already (SAT);
-//   DepthCheck confirmDepth(frame, kept, deepestPoint, normal, normalOverlap, featureA, featureB).
+//   DepthCheck confirmDepth(frame, kept, deepest, deepestPoint, normal, featureA, featureB).
 #pragma once
 
 #include "contact/collide_general.hpp"
@@ -124,7 +125,7 @@ template <class Hooks>
         if (point.depth > deepest) deepest = point.depth, deepestPoint = &point;
     if (deepest < normalOverlap - tolerance) {
         const DepthCheck check =
-            hooks.confirmDepth(frame, kept, deepest, deepestPoint, normal, normalOverlap, featureA, featureB);
+            hooks.confirmDepth(frame, kept, deepest, deepestPoint, normal, featureA, featureB);
         if (check == DepthCheck::Delegate) return Composed::Delegate;
         if (check == DepthCheck::Separated) {
             clearManifold(manifold);

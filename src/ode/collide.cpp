@@ -370,18 +370,18 @@ int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int ma
 // zeroed and then copied, a tenth of a box–plane call (tests/ode/adapter_overhead.sh). Every other
 // pair takes gdc::collide itself. tests/ode/adapter_equality_test.cpp checks the adapter against
 // gdc::collide on random poses of every pair type.
-// A plane's normalisation, made once per plane (planeSlot), where the core accepted it.
 // AngularTolerance(radians), the thread's copy while `radians` is the same to the bit.
 const gdc::detail::AngularTolerance& angularToleranceOf(detail::ThreadCache& cache, double radians) {
     std::uint64_t bits;
     std::memcpy(&bits, &radians, sizeof bits);
-    if (!cache.angularToleranceKnown || cache.angularToleranceBits != bits) {
+    if (cache.angularToleranceBits != bits) {
         cache.angularTolerance = gdc::detail::AngularTolerance(radians);
         cache.angularToleranceBits = bits;
-        cache.angularToleranceKnown = true;
     }
     return cache.angularTolerance;
 }
+
+// A plane's normalisation, made once per plane (planeSlot), where the core accepted it.
 
 void queryInto(const Polytope& a, const Pose& poseA, const detail::ThreadCache::PlaneSlot& plane, const HalfSpace& b,
                const Settings& settings, detail::ThreadCache& cache, Manifold& out) {

@@ -91,8 +91,8 @@ struct ThreadCache {
 
     // The Gauss-map tolerance (cosine, sine) of the last Settings::angularTolerance a hull–plane
     // query used, kept while the radians stay the same to the bit (angularToleranceOf): its series
-    // cost every such query ~45 instructions (callgrind, issue 23).
-    bool angularToleranceKnown = false;
+    // cost every such query ~45 instructions (callgrind, issue 23). It starts as the tolerance of
+    // 0.0 rad, whose bits are 0.
     std::uint64_t angularToleranceBits = 0;
     gdc::detail::AngularTolerance angularTolerance{0.0};
 
