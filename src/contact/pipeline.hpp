@@ -1,13 +1,18 @@
-// The paper's three stages composed once, for every pair of polytopes: early out, stage 1 (the
-// growth-distance normal and the overhang check), stage 2 (one Gauss-map feature per body and the
-// normal refined among their faces), stage 3 (the features intersected in the contact plane), the
-// depth confirmation and the manifold written out. What differs between shapes is supplied by a
-// hooks struct (Jolt's way: a shape gives its support and supporting face, the algorithm is one):
-// collide.cpp's GeneralPairHooks (any polytopes: GJK ray cast or the hull enumeration, Gauss-map
-// search, the ray cast's depth confirmation) and box_box.cpp's BoxPairHooks (the boxes' closed
-// forms). A template, so that the box pair's hooks inline into straight-line code.
+// The paper's three stages composed once, for every pair a polytope A meets: another polytope or a
+// half-space. composeStages constructs the pair (two polytopes: their Minkowski difference and the
+// early out; a half-space: its plane in A's frame), then composeStagesIn runs stage 1 (the normal
+// and the overhang check), stage 2 (one Gauss-map feature per body) and stage 3 (the contacts:
+// two polytopes' features refined and intersected in the contact plane, with the depth
+// confirmation; a feature against a plane lifted to its depths), and writes the manifold out. What
+// differs between shapes is supplied by a hooks struct (Jolt's way: a shape gives its support and
+// supporting face, the algorithm is one): collide.cpp's GeneralPairHooks (any polytopes: GJK ray
+// cast or the hull enumeration, Gauss-map search, the ray cast's depth confirmation),
+// box_box.cpp's BoxPairHooks (the boxes' closed forms), and half_space.cpp's hooks of a box, a
+// small hull and any polytope on a plane. What depends on what B is (a polytope or a plane) is
+// chosen by the frame's type: contactNormal and composeContacts, overloaded on PairFrame and
+// HalfSpaceFrame. Templates, so that each shape's hooks inline into straight-line code.
 //
-// A hooks struct supplies:
+// A pair's hooks struct supplies:
 //   static constexpr bool kDelegatesRareCases — true: the overhang check and an empty intersection
 //       are not handled but returned as Composed::Delegate (the caller runs the general hooks);
 //   bool acceptsPoses(poseA, poseB)            — false: Delegate (or throw the input's error);
@@ -18,10 +23,20 @@
 //   featureA(frame, feature), featureB(frame, feature) — the features in A's frame (view()-able);
 //   bool refinesNormal()                       — false where the normal is exact already (SAT);
 //   DepthCheck confirmDepth(frame, kept, deepest, deepestPoint, normal, featureA, featureB).
+// A half-space's hooks struct supplies (the plane brings the normal, the shape the rest):
+//   static constexpr bool kDelegatesRareCases = false, and preferNearbyFace (never asked: the
+//       plane's normal is exact);
+//   double supportDepth(frame, normal)         — the depth of A's support along normal (−m), kept
+//       as `deepest` (a vertex index);
+//   void selectFeatures(frame, normal, first, manifold) — A's Gauss-map feature for normal, the
+//       plane's face for B;
+//   const SmallVector<int, 8>* cap()            — the feature's cap of near-coplanar faces, if any;
+//   double depthOf(frame, vertex)              — a vertex's depth below the plane.
 #pragma once
 
 #include "contact/collide_general.hpp"
 #include "contact/feature_intersection.hpp"
+#include "contact/plane_contacts.hpp"
 #include "contact/reduction.hpp"
 #include "geometry/minkowski.hpp"
 
@@ -47,7 +62,10 @@ struct Stage1 {
     double faceOverlapLowerBound = -INFINITY;
 };
 
-/// The pair in A's frame, as every stage sees it.
+/// Two polytopes in A's frame, as every stage sees them. The pair construction is the composition's
+/// first hook point: two polytopes make this frame (their Minkowski difference, the centres'
+/// offset); a half-space makes a HalfSpaceFrame (its plane in A's frame), where a Minkowski
+/// difference means nothing.
 struct PairFrame {
     const Polytope& a;
     const Polytope& b;
@@ -56,6 +74,7 @@ struct PairFrame {
     double size;
     double tolerance;
     double centreDistance;
+    const Vec3& centreOffset;  // B's centre less A's
 };
 
 /// The empty answer a new Manifold is (the points beyond pointCount are never read).
@@ -66,46 +85,39 @@ inline void clearManifold(Manifold& manifold) {
     manifold.featureB = Feature{};
 }
 
+/// Stage 1's hook for a pair of polytopes: the growth-distance normal (or the hooks' closed form).
 template <class Hooks>
-[[gnu::always_inline]] inline Composed composeStages(Hooks& hooks, const Polytope& a, const Pose& poseA,
-                                                     const Polytope& b, const Pose& poseB, const Settings& settings,
-                                                     Manifold& manifold) {
-    if (!hooks.acceptsPoses(poseA, poseB)) return Composed::Delegate;
-    clearManifold(manifold);
-    const Pose bInA = poseA.relative(poseB);
-    const MinkowskiDifference pair(a, b, bInA, settings.bruteForceSupportLimit);
-    const double size = a.radius() + b.radius();
-    const double tolerance = 1e-9 * size;
-    const Vec3 centreOffset = pair.centreB - pair.centreA;
-    const double centreDistance = centreOffset.norm();
-    if (separatedByEarlyOut(pair, centreOffset, centreDistance, size, settings.margin, tolerance)) return Composed::Done;
-    const PairFrame frame{a, b, bInA, pair, size, tolerance, centreDistance};
+[[gnu::always_inline]] inline Stage1 contactNormal(Hooks& hooks, const PairFrame& frame) {
+    return hooks.growthNormal(frame, frame.centreOffset);
+}
 
-    // Stage 1: the contact normal.
-    const Stage1 stage1 = hooks.growthNormal(frame, centreOffset);
-    if (stage1.delegate) return Composed::Delegate;
-    Vec3 normal = stage1.normal;
-    double normalOverlap = stage1.normalOverlap;
-    if (normalOverlap < -settings.margin - tolerance) return Composed::Done;  // separated along n
-    // The overhang check (preferNearbyFaceNormal) can only pick a face whose overlap is below half
-    // the normal's, so a lower bound of every face's overlap above that settles it without a search.
-    const bool overhangPossible =
-        stage1.growthNormal && !(stage1.faceOverlapLowerBound >= kClearlySmallerOverlap * normalOverlap + tolerance);
-    if constexpr (Hooks::kDelegatesRareCases)
-        if (overhangPossible) return Composed::Delegate;
+/// A half-space B: its plane in A's frame, the solid {x : m·x ≤ offset}.
+struct HalfSpaceFrame {
+    const Polytope& a;
+    PlaneInA plane;
+    double tolerance;  // 1e-9 × A's radius (a plane has none)
+};
 
-    // Stage 2: one Gauss-map feature per body (B's with −n in its own frame), the overhang check
-    // on them, and the normal refined among their faces.
-    hooks.selectFeatures(frame, normal, /*first=*/true, manifold);
-    if constexpr (!Hooks::kDelegatesRareCases) {
-        if (overhangPossible && hooks.preferNearbyFace(frame, normal, normalOverlap, manifold)) {
-            if (normalOverlap < -settings.margin - tolerance) {  // a separating face
-                clearManifold(manifold);
-                return Composed::Done;
-            }
-            hooks.selectFeatures(frame, normal, /*first=*/false, manifold);
-        }
-    }
+/// Stage 1 where B is a half-space: the normal is the plane's own, −m; the overlap along it is the
+/// depth of A's support along −m, which the shape's hook finds (a box's closed form, a hull's loop
+/// or search) and keeps for stage 2. No overhang check: the normal is exact.
+template <class Hooks>
+[[gnu::always_inline]] inline Stage1 contactNormal(Hooks& hooks, const HalfSpaceFrame& frame) {
+    Stage1 stage1;
+    stage1.normal = -frame.plane.m;
+    stage1.normalOverlap = hooks.supportDepth(frame, stage1.normal);
+    return stage1;
+}
+
+/// Stage 3 and the manifold written out, for two polytopes: the features in A's frame (refining
+/// the normal among their faces), their intersection in the contact plane, the depth
+/// confirmation, the supports' gap where nothing intersects, emitManifold.
+template <class Hooks>
+[[gnu::always_inline]] inline Composed composeContacts(Hooks& hooks, const PairFrame& frame, Vec3& normal,
+                                                       double& normalOverlap, const Pose& poseA,
+                                                       const Settings& settings, Manifold& manifold) {
+    const MinkowskiDifference& pair = frame.pair;
+    const double tolerance = frame.tolerance;
     const auto featureA = hooks.featureA(frame, manifold.featureA);
     const auto featureB = hooks.featureB(frame, manifold.featureB);
     const FeatureView viewA = view(featureA), viewB = view(featureB);
@@ -135,7 +147,7 @@ template <class Hooks>
     if (kept.empty()) {
         // The line along n misses A − B: the pair is apart, by at most the margin (the supports'
         // overlap along n passed the check above) — a speculative contact at the supports' gap.
-        const Vec3 middle = 0.5 * (a.vertices()[pair.supportA(normal)] + pair.vertexB(pair.supportB(-normal)));
+        const Vec3 middle = 0.5 * (frame.a.vertices()[pair.supportA(normal)] + pair.vertexB(pair.supportB(-normal)));
         const double gap = normalOverlap;
         if (gap < -settings.margin - tolerance) {
             clearManifold(manifold);
@@ -146,6 +158,90 @@ template <class Hooks>
     const Vec3 centroids[2] = {pair.centreA, pair.centreB};
     emitManifold(kept, normal, poseA, settings, tolerance, centroids, 2, manifold);
     return Composed::Done;
+}
+
+/// Stage 3 and the manifold written out where B is a half-space: A's feature against the plane is
+/// its points lifted to their depths (plane_contacts.hpp), ranked and emitted by emitManifold's
+/// rule. The depth needs no confirmation — every depth is exact, the deepest vertex among them —
+/// and where all points float the support itself stands in for the supports' gap.
+template <class Hooks>
+[[gnu::always_inline]] inline Composed composeContacts(Hooks& hooks, const HalfSpaceFrame& frame, Vec3& normal,
+                                                       double& /*normalOverlap*/, const Pose& poseA,
+                                                       const Settings& settings, Manifold& manifold) {
+    const PlaneLift lift{frame.a, frame.plane, settings, frame.tolerance, -settings.margin - frame.tolerance};
+    lift.liftFeature(
+        manifold.featureA, hooks.deepest, hooks.cap(), [&](int v) { return hooks.depthOf(frame, v); }, normal, poseA,
+        manifold);
+    return Composed::Done;
+}
+
+/// The one composition, once the pair is constructed: stage 1 (the normal), the separation along
+/// it, the overhang check, stage 2 (the features), stage 3 with the manifold written out. `frame`
+/// says what B is (PairFrame, HalfSpaceFrame); contactNormal and composeContacts are the hook
+/// points that depend on it, the shape's own hooks are the rest.
+template <class Hooks, class Frame>
+[[gnu::always_inline]] inline Composed composeStagesIn(Hooks& hooks, const Frame& frame, const Pose& poseA,
+                                                       const Settings& settings, Manifold& manifold) {
+    const double tolerance = frame.tolerance;
+
+    // Stage 1: the contact normal.
+    const Stage1 stage1 = contactNormal(hooks, frame);
+    if (stage1.delegate) return Composed::Delegate;
+    Vec3 normal = stage1.normal;
+    double normalOverlap = stage1.normalOverlap;
+    if (normalOverlap < -settings.margin - tolerance) return Composed::Done;  // separated along n
+    // The overhang check (preferNearbyFaceNormal) can only pick a face whose overlap is below half
+    // the normal's, so a lower bound of every face's overlap above that settles it without a search.
+    const bool overhangPossible =
+        stage1.growthNormal && !(stage1.faceOverlapLowerBound >= kClearlySmallerOverlap * normalOverlap + tolerance);
+    if constexpr (Hooks::kDelegatesRareCases)
+        if (overhangPossible) return Composed::Delegate;
+
+    // Stage 2: one Gauss-map feature per body (B's with −n in its own frame), the overhang check
+    // on them.
+    hooks.selectFeatures(frame, normal, /*first=*/true, manifold);
+    if constexpr (!Hooks::kDelegatesRareCases) {
+        if (overhangPossible && hooks.preferNearbyFace(frame, normal, normalOverlap, manifold)) {
+            if (normalOverlap < -settings.margin - tolerance) {  // a separating face
+                clearManifold(manifold);
+                return Composed::Done;
+            }
+            hooks.selectFeatures(frame, normal, /*first=*/false, manifold);
+        }
+    }
+
+    // Stage 3: the contacts.
+    return composeContacts(hooks, frame, normal, normalOverlap, poseA, settings, manifold);
+}
+
+/// Two polytopes: the pair construction (A − B in A's frame) and the early out, then the stages.
+template <class Hooks>
+[[gnu::always_inline]] inline Composed composeStages(Hooks& hooks, const Polytope& a, const Pose& poseA,
+                                                     const Polytope& b, const Pose& poseB, const Settings& settings,
+                                                     Manifold& manifold) {
+    if (!hooks.acceptsPoses(poseA, poseB)) return Composed::Delegate;
+    clearManifold(manifold);
+    const Pose bInA = poseA.relative(poseB);
+    const MinkowskiDifference pair(a, b, bInA, settings.bruteForceSupportLimit);
+    const double size = a.radius() + b.radius();
+    const double tolerance = 1e-9 * size;
+    const Vec3 centreOffset = pair.centreB - pair.centreA;
+    const double centreDistance = centreOffset.norm();
+    if (separatedByEarlyOut(pair, centreOffset, centreDistance, size, settings.margin, tolerance)) return Composed::Done;
+    const PairFrame frame{a, b, bInA, pair, size, tolerance, centreDistance, centreOffset};
+    return composeStagesIn(hooks, frame, poseA, settings, manifold);
+}
+
+/// A polytope on a half-space (b normalised, poseA checked finite by the caller: a bad pose is
+/// reported before a bad plane): its plane in A's frame, then the stages. No early out of its own:
+/// stage 1's support depth is the test.
+template <class Hooks>
+[[gnu::always_inline]] inline Composed composeStages(Hooks& hooks, const Polytope& a, const Pose& poseA,
+                                                     const UnitHalfSpace& b, const Settings& settings,
+                                                     Manifold& manifold) {
+    const HalfSpaceFrame frame{a, planeInA(b, poseA), 1e-9 * a.radius()};
+    clearManifold(manifold);
+    return composeStagesIn(hooks, frame, poseA, settings, manifold);
 }
 
 }  // namespace gdc::detail
