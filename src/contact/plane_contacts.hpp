@@ -229,10 +229,10 @@ struct PlaneLift {
     // The feature's points into the manifold, ranked (and reduced) as collideGeneral's emit does:
     // in fixed arrays when they cannot outnumber the caller's maximum, gathered otherwise. A
     // tilted face whose points all float keeps the deepest vertex.
-    // `normal` is the plane's, −m (stage 1).
     template <class VertexDepth>
     void liftFeature(const Feature& feature, int deepest, const SmallVector<int, 8>* cap, VertexDepth depthOfVertex,
-                     const Vec3& normal, const Pose& poseA, Manifold& manifold) const {
+                     const Pose& poseA, Manifold& manifold) const {
+        const Vec3 normal = -plane.m;  // stage 1's, the plane's own (made here: not kept in memory for the call)
         int storage[2];
         const int* indices = nullptr;
         const int count = featureVertices(a, feature, &indices, storage);
