@@ -233,9 +233,7 @@ template <class Hooks>
 }
 
 /// A polytope on a half-space: the pair construction is its plane in A's frame (b normalised,
-/// poseA checked finite by the caller: a bad pose is reported before a bad plane). Made by the
-/// caller and passed in, as a value the stages read from memory: made inside, it held registers
-/// across the small hull's vertex loop (callgrind: +30 instructions per hull–plane query).
+/// poseA checked finite by the caller: a bad pose is reported before a bad plane).
 inline HalfSpaceFrame halfSpaceFrame(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b) {
     return {a, planeInA(b, poseA), 1e-9 * a.radius()};
 }
