@@ -95,7 +95,7 @@ template <class Hooks>
 struct HalfSpaceFrame {
     const Polytope& a;
     PlaneInA plane;
-    double tolerance;  // 1e-9 × A's radius (a plane has none)
+    double tolerance;  // 1e-9 × A's radius (the plane adds no size)
 };
 
 /// Stage 1 where B is a half-space: the normal is the plane's own, −m; the overlap along it is the
