@@ -103,6 +103,32 @@ bool contains(const Vec2* hull, int size, const Vec2& p, double slack) {
 
 }  // namespace
 
+bool isStrictlyConvexCycle(const RankPoint* points, int count) {
+    if (count < 3) return false;
+    double minX = points[0].planar.x(), maxX = minX, minY = points[0].planar.y(), maxY = minY;
+    for (int i = 1; i < count; ++i) {
+        const Vec2& p = points[i].planar;
+        minX = std::min(minX, p.x()), maxX = std::max(maxX, p.x());
+        minY = std::min(minY, p.y()), maxY = std::max(maxY, p.y());
+    }
+    // Every coordinate difference is at most (width, height), so a computed cross product of two
+    // of them is off by at most ~6.1 ε·width·height (ε = 2^-53): a margin of 1e-13·width·height,
+    // 450 times that, makes every certified sign the true one. The box's area stays far from
+    // underflow and overflow so that the bound holds (else: not certified, today's path).
+    const double box = (maxX - minX) * (maxY - minY);
+    if (!(box >= 1e-250 && box <= 1e250)) return false;
+    const double margin = 1e-13 * box;
+    int upward = 0;  // the edges' turns through the direction +x: the times the boundary winds
+    Vec2 previous = points[0].planar - points[count - 1].planar;
+    for (int i = 0; i < count; ++i) {
+        const Vec2 edge = points[i + 1 == count ? 0 : i + 1].planar - points[i].planar;
+        if (!(cross2(previous, edge) > margin)) return false;  // not a certain left turn
+        upward += previous.y() < 0 && edge.y() >= 0;  // exact signs: a rounded difference keeps its sign
+        previous = edge;
+    }
+    return upward == 1;
+}
+
 int rankContacts(const RankPoint* points, int count, const RankingRule& rule, int* chosen) {
     const int fixed = rule.fixedCount;
     if (fixed == 0 && count <= 4 && count <= rule.maxCount) return rankAllOfFew(points, count, rule, chosen);
@@ -191,6 +217,11 @@ int rankContacts(const RankPoint* points, int count, const RankingRule& rule, in
         hullSize = convexHull(keptPoints.data(), kept, hull.data());  // 1 or 2 points: themselves, sorted
         updateEdges();
     };
+    // With the points certified a strictly convex cycle (below, when the hull first forms): the
+    // kept hull as links between point indices — each free point's hull neighbours, each hull
+    // vertex's successor — instead of the hull's coordinates and every edge's sign test.
+    bool cycle = false;
+    int hullBefore[kMaxManifoldPoints], hullAfter[kMaxManifoldPoints], hullNext[kMaxManifoldPoints];
     for (int slot = fixed > 0 ? fixed : 2; slot < wanted; ++slot) {
         if (slot + 1 == count) return take(0, slot), wanted;  // every point kept: no centroid rule
         if (fixed > 0) rebuildHull(slot);
@@ -202,6 +233,17 @@ int rankContacts(const RankPoint* points, int count, const RankingRule& rule, in
             const Vec2 segment = points[chosen[1]].planar - p0;
             for (int k = 0; k < freeCount; ++k)
                 bestGain = std::max(bestGain, value[k] = 0.5 * std::abs(cross2(segment, points[free[k]].planar - p0)));
+        } else if (cycle) {
+            // A vertex of a strictly convex polygon sees exactly one edge of the kept hull (whose
+            // vertices are polygon vertices too): the one between its hull neighbours. Its gain is
+            // that triangle, the very expression below (edges[e] = b − a, then the cross product),
+            // so the value is the same double.
+            for (int k = 0; k < freeCount; ++k) {
+                const int i = free[k];
+                const Vec2& a = points[hullBefore[i]].planar;
+                const double twiceArea = cross2(points[hullAfter[i]].planar - a, points[i].planar - a);
+                bestGain = std::max(bestGain, value[k] = -(0.5 * twiceArea));
+            }
         } else {
             // The area the hull gains when the point joins it: the triangles it forms with the
             // edges it sees from outside (areaGain, with the edges computed once per hull).
@@ -231,12 +273,20 @@ int rankContacts(const RankPoint* points, int count, const RankingRule& rule, in
         }
         const int position = pickAtLeast(keep * bestGain);
         const int index = free[position];
-        const std::uint64_t seen = sees[position];
+        const std::uint64_t seen = cycle ? 0 : sees[position];  // (a cycle's gains set no edge bits)
         take(position, slot);
         // A later slot reads the hull unless the next one takes the last point or there is none.
         const bool hullRead = (slot + 1 < wanted && slot + 2 != count) || centroidRuleMayAct;
         if (!hullRead || fixed > 0) continue;
         const Vec2& q = points[index].planar;
+        if (cycle) {  // q joins between its hull neighbours: the free points on either side see q
+            const int before = hullBefore[index], after = hullAfter[index];
+            for (int j = before + 1 == count ? 0 : before + 1; j != index; j = j + 1 == count ? 0 : j + 1) hullAfter[j] = index;
+            for (int j = index + 1 == count ? 0 : index + 1; j != after; j = j + 1 == count ? 0 : j + 1) hullBefore[j] = index;
+            hullNext[before] = index, hullNext[index] = after;
+            ++hullSize;
+            continue;
+        }
         if (hullSize >= 3) {
             hullSize = insertIntoHullSeeing(hull.data(), hullSize, q, seen);
         } else {  // the first point off the line: the triangle, counter-clockwise
@@ -244,8 +294,33 @@ int rankContacts(const RankPoint* points, int count, const RankingRule& rule, in
             if (cross2(b - p0, c - p0) < 0) std::swap(b, c);
             hull[0] = p0, hull[1] = b, hull[2] = c;
             hullSize = 3;
+            // The points in cyclic order around a strictly convex polygon (the clip of two faces):
+            // then the kept hull is the kept vertices in that order, and each free point's gain is
+            // one triangle (above). Certified once, from the points alone, for every caller; only
+            // where at least two slots read the hull's gains (the certificate, a pass over the
+            // points, cost more than one slot's sign tests: callgrind, 8 points to a budget of 4).
+            const int gainSlots = wanted - slot - 1 - (wanted == count ? 1 : 0);
+            if (gainSlots >= 2 && count <= kMaxManifoldPoints && isStrictlyConvexCycle(points, count)) {
+                cycle = true;
+                // The triangle's vertices in cyclic order, and each other point's neighbours on it.
+                int corners[3] = {chosen[0], chosen[1], index};
+                std::sort(corners, corners + 3);
+                for (int c3 = 0; c3 < 3; ++c3) {
+                    const int from = corners[c3], to = corners[c3 == 2 ? 0 : c3 + 1];
+                    hullNext[from] = to;
+                    for (int j = from + 1 == count ? 0 : from + 1; j != to; j = j + 1 == count ? 0 : j + 1)
+                        hullBefore[j] = from, hullAfter[j] = to;
+                }
+                continue;
+            }
         }
         updateEdges();
+    }
+    // The cycle's hull as the insertions above would have left it: from the first point (the
+    // triangle's first vertex, never dropped), counter-clockwise.
+    if (cycle && centroidRuleMayAct) {
+        int vertex = chosen[0];
+        for (int e = 0; e < hullSize; ++e) hull[e] = points[vertex].planar, vertex = hullNext[vertex];
     }
     // (A polygon of more points than the hull buffers hold — only caps of many faces make one —
     // keeps the greedy set.)
