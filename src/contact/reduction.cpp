@@ -101,30 +101,193 @@ bool contains(const Vec2* hull, int size, const Vec2& p, double slack) {
     return true;
 }
 
+// The centroid rule: a body whose centroid projects inside the whole contact polygon rests on
+// it; if the kept points leave the centroid outside, that body would tip over an edge the polygon
+// does not have. Then one kept point (never the first) is swapped for the point that brings every
+// such centroid back inside, the swap of largest area. `hull`: the kept hull (CCW, keptSize
+// vertices; overwritten), `free`: the points not kept, ascending. Returns wanted.
+int applyCentroidRule(const RankPoint* points, int count, const RankingRule& rule, int wanted, int* chosen,
+                      std::array<Vec2, kMaxHull>& hull, int keptSize, const int* free, int freeCount) {
+    const int centroids = std::min(rule.centroidCount, 4);
+    std::array<Vec2, kMaxHull> scratch;
+    // A centroid needs the rule only if it is outside the kept hull and a free point lies beyond a
+    // kept edge it is outside of (else that edge's line separates it from every point: it is
+    // outside the whole polygon too) — two cheap tests before the whole polygon is built.
+    bool restore = false;
+    for (int c = 0; c < centroids && !restore; ++c) {
+        const Vec2& centroid = rule.centroids[c];
+        if (keptSize < 3) {
+            restore = true;
+            break;
+        }
+        for (int e = 0; e < keptSize && !restore; ++e) {
+            const Vec2& a = hull[e];
+            const Vec2 edge = hull[e + 1 == keptSize ? 0 : e + 1] - a;
+            if (!(cross2(edge, centroid - a) < -rule.tolerance * edge.norm())) continue;  // inside this edge
+            for (int k = 0; k < freeCount && !restore; ++k) restore = cross2(edge, points[free[k]].planar - a) < 0;
+            if (!restore) break;  // separated from every point by this edge's line
+        }
+    }
+    if (!restore) return wanted;
+    // The whole polygon: the kept hull grown by every free point (no sort).
+    std::array<Vec2, kMaxHull> whole;
+    int wholeSize = keptSize;
+    std::copy(hull.begin(), hull.begin() + keptSize, whole.begin());
+    if (wholeSize >= 3) {
+        for (int k = 0; k < freeCount; ++k) wholeSize = insertIntoHull(whole.data(), wholeSize, points[free[k]].planar);
+    } else {
+        for (int i = 0; i < count; ++i) scratch[i] = points[i].planar;
+        wholeSize = convexHull(scratch.data(), count, whole.data());
+    }
+    // Every centroid inside the whole polygon (by more than rounding) must be inside the kept set.
+    bool required[4] = {false, false, false, false};
+    bool any = false;
+    for (int c = 0; c < centroids; ++c) {
+        required[c] = contains(whole.data(), wholeSize, rule.centroids[c], -rule.tolerance);
+        any |= required[c] && !contains(hull.data(), keptSize, rule.centroids[c], rule.tolerance);
+    }
+    if (!any) return wanted;
+    int bestSlot = -1, bestPoint = -1;
+    double bestArea = -1;
+    for (int slot = 1; slot < wanted; ++slot)
+        for (int k = 0; k < freeCount; ++k) {
+            const int i = free[k];
+            for (int s = 0; s < wanted; ++s) scratch[s] = s == slot ? points[i].planar : points[chosen[s]].planar;
+            const int size = convexHull(scratch.data(), wanted, hull.data());
+            bool holds = true;
+            for (int c = 0; c < centroids && holds; ++c)
+                holds = !required[c] || contains(hull.data(), size, rule.centroids[c], rule.tolerance);
+            if (!holds) continue;
+            const double area = hullArea(hull.data(), size);
+            if (area > bestArea) bestArea = area, bestSlot = slot, bestPoint = i;
+        }
+    if (bestSlot >= 0) chosen[bestSlot] = bestPoint;
+    return wanted;
+}
+
+
+// The greedy ranking of rankContacts for points certified a strictly convex cycle
+// (isStrictlyConvexCycle: the clip of two faces) with no given prefix and at least two slots that
+// read the kept hull's gains. Each point is a vertex of the polygon, so it sees exactly one edge
+// of the kept hull — the one between its two hull neighbours — and the area it adds is that one
+// triangle: the very expression the general path sums (b − a, then the cross product, the sign
+// certified), so every value, comparison and choice is the general path's. The kept hull is links
+// between indices, the free points a bit set (ascending, as the general path's list). Returns -1
+// where a slot finds no area to gain (a sliver: the spread rule), and the general path ranks.
+int rankConvexCycle(const RankPoint* points, int count, const RankingRule& rule, int wanted, int* chosen) {
+    const double keep = 1 - rule.hysteresis;
+    std::uint32_t freeMask = (std::uint32_t{1} << count) - 1;
+    double value[kMaxManifoldPoints];
+    auto pickAtLeast = [&](double threshold) {  // the free point of largest identity whose value reaches it
+        int best = -1;
+        double bestIdentity = -INFINITY;
+        for (std::uint32_t m = freeMask; m != 0; m &= m - 1) {
+            const int k = __builtin_ctz(m);
+            if (value[k] >= threshold && (best < 0 || points[k].identity > bestIdentity))
+                best = k, bestIdentity = points[k].identity;
+        }
+        return best;
+    };
+    double deepest = -INFINITY;
+    for (int k = 0; k < count; ++k) deepest = std::max(deepest, value[k] = points[k].depth);
+    const int first = pickAtLeast(deepest - rule.tolerance);
+    if (first < 0) return -1;
+    chosen[0] = first, freeMask &= ~(std::uint32_t{1} << first);
+    const Vec2 p0 = points[first].planar;
+    double farthest = 0;
+    for (std::uint32_t m = freeMask; m != 0; m &= m - 1) {
+        const int k = __builtin_ctz(m);
+        farthest = std::max(farthest, value[k] = (points[k].planar - p0).squaredNorm());
+    }
+    const int second = pickAtLeast(keep * keep * farthest);
+    chosen[1] = second, freeMask &= ~(std::uint32_t{1} << second);
+    const double areaTolerance = rule.tolerance * std::sqrt(farthest);
+    // The third point: the largest triangle on the segment.
+    const Vec2 segment = points[second].planar - p0;
+    double bestGain = 0;
+    for (std::uint32_t m = freeMask; m != 0; m &= m - 1) {
+        const int k = __builtin_ctz(m);
+        bestGain = std::max(bestGain, value[k] = 0.5 * std::abs(cross2(segment, points[k].planar - p0)));
+    }
+    if (!(bestGain > areaTolerance)) return -1;
+    const int third = pickAtLeast(keep * bestGain);
+    chosen[2] = third, freeMask &= ~(std::uint32_t{1} << third);
+    // The triangle counter-clockwise is its corners in cyclic order; each free point's hull
+    // neighbours are the corners around its arc.
+    int before[kMaxManifoldPoints], after[kMaxManifoldPoints], next[kMaxManifoldPoints];
+    int corners[3] = {first, second, third};
+    if (corners[0] > corners[1]) std::swap(corners[0], corners[1]);
+    if (corners[1] > corners[2]) std::swap(corners[1], corners[2]);
+    if (corners[0] > corners[1]) std::swap(corners[0], corners[1]);
+    for (int c = 0; c < 3; ++c) {
+        const int from = corners[c], to = corners[c == 2 ? 0 : c + 1];
+        next[from] = to;
+        for (int j = from + 1 == count ? 0 : from + 1; j != to; j = j + 1 == count ? 0 : j + 1) before[j] = from, after[j] = to;
+    }
+    int hullSize = 3;
+    for (int slot = 3; slot < wanted; ++slot) {
+        if (slot + 1 == count) {  // every point kept: no centroid rule
+            chosen[slot] = __builtin_ctz(freeMask);
+            return wanted;
+        }
+        bestGain = 0;
+        for (std::uint32_t m = freeMask; m != 0; m &= m - 1) {
+            const int k = __builtin_ctz(m);
+            const Vec2& a = points[before[k]].planar;
+            const double twiceArea = cross2(points[after[k]].planar - a, points[k].planar - a);
+            bestGain = std::max(bestGain, value[k] = -(0.5 * twiceArea));  // twiceArea < 0: 0 − ½·twiceArea
+        }
+        if (!(bestGain > areaTolerance)) return -1;
+        const int q = pickAtLeast(keep * bestGain);
+        chosen[slot] = q, freeMask &= ~(std::uint32_t{1} << q);
+        // q joins the hull between its neighbours: the points of the arc on either side now see q.
+        const int a = before[q], b = after[q];
+        for (int j = a + 1 == count ? 0 : a + 1; j != q; j = j + 1 == count ? 0 : j + 1) after[j] = q;
+        for (int j = q + 1 == count ? 0 : q + 1; j != b; j = j + 1 == count ? 0 : j + 1) before[j] = q;
+        next[a] = q, next[q] = b;
+        ++hullSize;
+    }
+    if (wanted == count || rule.centroidCount == 0 || count > kMaxHull - 2) return wanted;
+    // The kept hull as the general path's insertions leave it: from the first point (never
+    // dropped), counter-clockwise; the free points ascending.
+    std::array<Vec2, kMaxHull> hull;
+    for (int e = 0, vertex = first; e < hullSize; ++e, vertex = next[vertex]) hull[e] = points[vertex].planar;
+    int free[kMaxManifoldPoints];
+    int freeCount = 0;
+    for (std::uint32_t m = freeMask; m != 0; m &= m - 1) free[freeCount++] = __builtin_ctz(m);
+    return applyCentroidRule(points, count, rule, wanted, chosen, hull, hullSize, free, freeCount);
+}
+
 }  // namespace
 
 bool isStrictlyConvexCycle(const RankPoint* points, int count) {
     if (count < 3) return false;
     double minX = points[0].planar.x(), maxX = minX, minY = points[0].planar.y(), maxY = minY;
     for (int i = 1; i < count; ++i) {
-        const Vec2& p = points[i].planar;
-        minX = std::min(minX, p.x()), maxX = std::max(maxX, p.x());
-        minY = std::min(minY, p.y()), maxY = std::max(maxY, p.y());
+        const double x = points[i].planar.x(), y = points[i].planar.y();
+        minX = x < minX ? x : minX, maxX = x > maxX ? x : maxX;
+        minY = y < minY ? y : minY, maxY = y > maxY ? y : maxY;
     }
     // Every coordinate difference is at most (width, height), so a computed cross product of two
     // of them is off by at most ~6.1 ε·width·height (ε = 2^-53): a margin of 1e-13·width·height,
-    // 450 times that, makes every certified sign the true one. The box's area stays far from
-    // underflow and overflow so that the bound holds (else: not certified, today's path).
+    // 450 times that, makes every certified sign the true one, and (the smallest triangle of a
+    // convex polygon's vertices is one of three consecutive ones) every sign of a cross product
+    // of any three of the points. The box's area stays far from underflow and overflow so that
+    // the bound holds (else: not certified, the general path).
     const double box = (maxX - minX) * (maxY - minY);
     if (!(box >= 1e-250 && box <= 1e250)) return false;
     const double margin = 1e-13 * box;
     int upward = 0;  // the edges' turns through the direction +x: the times the boundary winds
-    Vec2 previous = points[0].planar - points[count - 1].planar;
+    double px = points[count - 1].planar.x(), py = points[count - 1].planar.y();
+    double ex = points[0].planar.x() - px, ey = points[0].planar.y() - py;  // the edge into point i
+    px = points[0].planar.x(), py = points[0].planar.y();
     for (int i = 0; i < count; ++i) {
-        const Vec2 edge = points[i + 1 == count ? 0 : i + 1].planar - points[i].planar;
-        if (!(cross2(previous, edge) > margin)) return false;  // not a certain left turn
-        upward += previous.y() < 0 && edge.y() >= 0;  // exact signs: a rounded difference keeps its sign
-        previous = edge;
+        const int j = i + 1 == count ? 0 : i + 1;
+        const double qx = points[j].planar.x(), qy = points[j].planar.y();
+        const double fx = qx - px, fy = qy - py;  // the edge out of point i
+        if (!(ex * fy - ey * fx > margin)) return false;  // not a certain left turn
+        upward += ey < 0 && fy >= 0;  // exact signs: a rounded difference keeps its sign
+        ex = fx, ey = fy, px = qx, py = qy;
     }
     return upward == 1;
 }
@@ -135,6 +298,14 @@ int rankContacts(const RankPoint* points, int count, const RankingRule& rule, in
     const int wanted = std::min(count, rule.maxCount);
     if (fixed > 0 && fixed >= wanted) return fixed;
     if (wanted <= 0) return 0;
+    // A convex polygon's vertices in cyclic order (the clip of two faces), where at least two slots
+    // read the kept hull's gains (else the certificate, a pass over the points, costs more than
+    // the sign tests it saves: callgrind, 8 points to a budget of 4).
+    if (fixed == 0 && count >= 5 && count <= kMaxManifoldPoints && wanted - 3 - (wanted == count ? 1 : 0) >= 2 &&
+        isStrictlyConvexCycle(points, count)) {
+        const int ranked = rankConvexCycle(points, count, rule, wanted, chosen);
+        if (ranked >= 0) return ranked;
+    }
     const double keep = 1 - rule.hysteresis;
     // The free points (indices, ascending: a tie of identities goes to the lower index), and the
     // value each would add in the current slot (value[k] belongs to free[k]). Walking this list
@@ -217,11 +388,6 @@ int rankContacts(const RankPoint* points, int count, const RankingRule& rule, in
         hullSize = convexHull(keptPoints.data(), kept, hull.data());  // 1 or 2 points: themselves, sorted
         updateEdges();
     };
-    // With the points certified a strictly convex cycle (below, when the hull first forms): the
-    // kept hull as links between point indices — each free point's hull neighbours, each hull
-    // vertex's successor — instead of the hull's coordinates and every edge's sign test.
-    bool cycle = false;
-    int hullBefore[kMaxManifoldPoints], hullAfter[kMaxManifoldPoints], hullNext[kMaxManifoldPoints];
     for (int slot = fixed > 0 ? fixed : 2; slot < wanted; ++slot) {
         if (slot + 1 == count) return take(0, slot), wanted;  // every point kept: no centroid rule
         if (fixed > 0) rebuildHull(slot);
@@ -233,17 +399,6 @@ int rankContacts(const RankPoint* points, int count, const RankingRule& rule, in
             const Vec2 segment = points[chosen[1]].planar - p0;
             for (int k = 0; k < freeCount; ++k)
                 bestGain = std::max(bestGain, value[k] = 0.5 * std::abs(cross2(segment, points[free[k]].planar - p0)));
-        } else if (cycle) {
-            // A vertex of a strictly convex polygon sees exactly one edge of the kept hull (whose
-            // vertices are polygon vertices too): the one between its hull neighbours. Its gain is
-            // that triangle, the very expression below (edges[e] = b − a, then the cross product),
-            // so the value is the same double.
-            for (int k = 0; k < freeCount; ++k) {
-                const int i = free[k];
-                const Vec2& a = points[hullBefore[i]].planar;
-                const double twiceArea = cross2(points[hullAfter[i]].planar - a, points[i].planar - a);
-                bestGain = std::max(bestGain, value[k] = -(0.5 * twiceArea));
-            }
         } else {
             // The area the hull gains when the point joins it: the triangles it forms with the
             // edges it sees from outside (areaGain, with the edges computed once per hull).
@@ -273,20 +428,12 @@ int rankContacts(const RankPoint* points, int count, const RankingRule& rule, in
         }
         const int position = pickAtLeast(keep * bestGain);
         const int index = free[position];
-        const std::uint64_t seen = cycle ? 0 : sees[position];  // (a cycle's gains set no edge bits)
+        const std::uint64_t seen = sees[position];
         take(position, slot);
         // A later slot reads the hull unless the next one takes the last point or there is none.
         const bool hullRead = (slot + 1 < wanted && slot + 2 != count) || centroidRuleMayAct;
         if (!hullRead || fixed > 0) continue;
         const Vec2& q = points[index].planar;
-        if (cycle) {  // q joins between its hull neighbours: the free points on either side see q
-            const int before = hullBefore[index], after = hullAfter[index];
-            for (int j = before + 1 == count ? 0 : before + 1; j != index; j = j + 1 == count ? 0 : j + 1) hullAfter[j] = index;
-            for (int j = index + 1 == count ? 0 : index + 1; j != after; j = j + 1 == count ? 0 : j + 1) hullBefore[j] = index;
-            hullNext[before] = index, hullNext[index] = after;
-            ++hullSize;
-            continue;
-        }
         if (hullSize >= 3) {
             hullSize = insertIntoHullSeeing(hull.data(), hullSize, q, seen);
         } else {  // the first point off the line: the triangle, counter-clockwise
@@ -294,98 +441,14 @@ int rankContacts(const RankPoint* points, int count, const RankingRule& rule, in
             if (cross2(b - p0, c - p0) < 0) std::swap(b, c);
             hull[0] = p0, hull[1] = b, hull[2] = c;
             hullSize = 3;
-            // The points in cyclic order around a strictly convex polygon (the clip of two faces):
-            // then the kept hull is the kept vertices in that order, and each free point's gain is
-            // one triangle (above). Certified once, from the points alone, for every caller; only
-            // where at least two slots read the hull's gains (the certificate, a pass over the
-            // points, cost more than one slot's sign tests: callgrind, 8 points to a budget of 4).
-            const int gainSlots = wanted - slot - 1 - (wanted == count ? 1 : 0);
-            if (gainSlots >= 2 && count <= kMaxManifoldPoints && isStrictlyConvexCycle(points, count)) {
-                cycle = true;
-                // The triangle's vertices in cyclic order, and each other point's neighbours on it.
-                int corners[3] = {chosen[0], chosen[1], index};
-                std::sort(corners, corners + 3);
-                for (int c3 = 0; c3 < 3; ++c3) {
-                    const int from = corners[c3], to = corners[c3 == 2 ? 0 : c3 + 1];
-                    hullNext[from] = to;
-                    for (int j = from + 1 == count ? 0 : from + 1; j != to; j = j + 1 == count ? 0 : j + 1)
-                        hullBefore[j] = from, hullAfter[j] = to;
-                }
-                continue;
-            }
         }
         updateEdges();
-    }
-    // The cycle's hull as the insertions above would have left it: from the first point (the
-    // triangle's first vertex, never dropped), counter-clockwise.
-    if (cycle && centroidRuleMayAct) {
-        int vertex = chosen[0];
-        for (int e = 0; e < hullSize; ++e) hull[e] = points[vertex].planar, vertex = hullNext[vertex];
     }
     // (A polygon of more points than the hull buffers hold — only caps of many faces make one —
     // keeps the greedy set.)
     if (!centroidRuleMayAct) return wanted;
 
-    // The centroid rule: a body whose centroid projects inside the whole contact polygon rests on
-    // it; if the kept points leave the centroid outside, that body would tip over an edge the
-    // polygon does not have. Then one kept point (never the first) is swapped for the point that
-    // brings every such centroid back inside, the swap of largest area.
-    const int centroids = std::min(rule.centroidCount, 4);
-    const int keptSize = hullSize;
-    std::array<Vec2, kMaxHull> scratch;
-    // A centroid needs the rule only if it is outside the kept hull and a free point lies beyond a
-    // kept edge it is outside of (else that edge's line separates it from every point: it is
-    // outside the whole polygon too) — two cheap tests before the whole polygon is built.
-    bool restore = false;
-    for (int c = 0; c < centroids && !restore; ++c) {
-        const Vec2& centroid = rule.centroids[c];
-        if (keptSize < 3) {
-            restore = true;
-            break;
-        }
-        for (int e = 0; e < keptSize && !restore; ++e) {
-            const Vec2& a = hull[e];
-            const Vec2 edge = hull[e + 1 == keptSize ? 0 : e + 1] - a;
-            if (!(cross2(edge, centroid - a) < -rule.tolerance * edge.norm())) continue;  // inside this edge
-            for (int k = 0; k < freeCount && !restore; ++k) restore = cross2(edge, points[free[k]].planar - a) < 0;
-            if (!restore) break;  // separated from every point by this edge's line
-        }
-    }
-    if (!restore) return wanted;
-    // The whole polygon: the kept hull grown by every free point (no sort).
-    std::array<Vec2, kMaxHull> whole;
-    int wholeSize = keptSize;
-    std::copy(hull.begin(), hull.begin() + keptSize, whole.begin());
-    if (wholeSize >= 3) {
-        for (int k = 0; k < freeCount; ++k) wholeSize = insertIntoHull(whole.data(), wholeSize, points[free[k]].planar);
-    } else {
-        for (int i = 0; i < count; ++i) scratch[i] = points[i].planar;
-        wholeSize = convexHull(scratch.data(), count, whole.data());
-    }
-    // Every centroid inside the whole polygon (by more than rounding) must be inside the kept set.
-    bool required[4] = {false, false, false, false};
-    bool any = false;
-    for (int c = 0; c < centroids; ++c) {
-        required[c] = contains(whole.data(), wholeSize, rule.centroids[c], -rule.tolerance);
-        any |= required[c] && !contains(hull.data(), keptSize, rule.centroids[c], rule.tolerance);
-    }
-    if (!any) return wanted;
-    int bestSlot = -1, bestPoint = -1;
-    double bestArea = -1;
-    for (int slot = 1; slot < wanted; ++slot)
-        for (int k = 0; k < freeCount; ++k) {
-            const int i = free[k];
-            for (int s = 0; s < wanted; ++s) scratch[s] = s == slot ? points[i].planar : points[chosen[s]].planar;
-            const int size = convexHull(scratch.data(), wanted, hull.data());
-            bool holds = true;
-            for (int c = 0; c < centroids && holds; ++c)
-                holds = !required[c] || contains(hull.data(), size, rule.centroids[c], rule.tolerance);
-            if (!holds) continue;
-            const double area = hullArea(hull.data(), size);
-            if (area > bestArea) bestArea = area, bestSlot = slot, bestPoint = i;
-        }
-    if (bestSlot >= 0) chosen[bestSlot] = bestPoint;
-    return wanted;
+    return applyCentroidRule(points, count, rule, wanted, chosen, hull, hullSize, free, freeCount);
 }
 
 int rankContacts(const LiftedPoints& points, const RankingRule& rule, int* chosen) {
