@@ -262,34 +262,31 @@ int rankConvexCycle(const RankPoint* points, int count, const RankingRule& rule,
 
 bool isStrictlyConvexCycle(const RankPoint* points, int count) {
     if (count < 3) return false;
-    double minX = points[0].planar.x(), maxX = minX, minY = points[0].planar.y(), maxY = minY;
-    for (int i = 1; i < count; ++i) {
-        const double x = points[i].planar.x(), y = points[i].planar.y();
-        minX = x < minX ? x : minX, maxX = x > maxX ? x : maxX;
-        minY = y < minY ? y : minY, maxY = y > maxY ? y : maxY;
-    }
-    // Every coordinate difference is at most (width, height), so a computed cross product of two
-    // of them is off by at most ~6.1 ε·width·height (ε = 2^-53): a margin of 1e-13·width·height,
-    // 450 times that, makes every certified sign the true one, and (the smallest triangle of a
-    // convex polygon's vertices is one of three consecutive ones) every sign of a cross product
-    // of any three of the points. The box's area stays far from underflow and overflow so that
-    // the bound holds (else: not certified, the general path).
-    const double box = (maxX - minX) * (maxY - minY);
-    if (!(box >= 1e-250 && box <= 1e250)) return false;
-    const double margin = 1e-13 * box;
-    int upward = 0;  // the edges' turns through the direction +x: the times the boundary winds
-    double px = points[count - 1].planar.x(), py = points[count - 1].planar.y();
-    double ex = points[0].planar.x() - px, ey = points[0].planar.y() - py;  // the edge into point i
-    px = points[0].planar.x(), py = points[0].planar.y();
+    // One pass over the edges: the least turn (the cross product of consecutive edges), the sums
+    // of the edges' |x| and |y| and the times the edges' direction turns through +x (the times
+    // the boundary winds: each turn is less than π where every turn is left).
+    double leastTurn = INFINITY, sumX = 0, sumY = 0;
+    int upward = 0;
+    double px = points[0].planar.x(), py = points[0].planar.y();
+    double ex = px - points[count - 1].planar.x(), ey = py - points[count - 1].planar.y();  // the edge into point i
     for (int i = 0; i < count; ++i) {
         const int j = i + 1 == count ? 0 : i + 1;
         const double qx = points[j].planar.x(), qy = points[j].planar.y();
         const double fx = qx - px, fy = qy - py;  // the edge out of point i
-        if (!(ex * fy - ey * fx > margin)) return false;  // not a certain left turn
+        leastTurn = std::min(leastTurn, ex * fy - ey * fx);
+        sumX += std::abs(fx), sumY += std::abs(fy);
         upward += ey < 0 && fy >= 0;  // exact signs: a rounded difference keeps its sign
         ex = fx, ey = fy, px = qx, py = qy;
     }
-    return upward == 1;
+    // Every difference of two of the points is at most (sumX, sumY)/2 in each coordinate (a
+    // closed polygon's extent is at most half its edges' total), so a computed cross product of
+    // two differences is off by at most ~6.1 ε·sumX·sumY/4 (ε = 2^-53): the margin 1e-13·sumX·sumY
+    // is over 1000 times that. Every turn certain and left, the boundary winding once: a strictly
+    // convex polygon, and (its smallest triangle of vertices is one of three consecutive ones)
+    // every cross product of differences of three of the points has its true sign. The area
+    // stays far from underflow and overflow so that the bound holds (else: not certified).
+    const double box = sumX * sumY;
+    return upward == 1 && box >= 1e-250 && box <= 1e250 && leastTurn > 1e-13 * box;
 }
 
 int rankContacts(const RankPoint* points, int count, const RankingRule& rule, int* chosen) {
