@@ -96,7 +96,10 @@ bool contains(const Vec2* hull, int size, const Vec2& p, double slack) {
     for (int i = 0; i < size; ++i) {
         const Vec2& a = hull[i];
         const Vec2 edge = hull[i + 1 == size ? 0 : i + 1] - a;
-        if (cross2(edge, p - a) < -slack * edge.norm()) return false;
+        const double side = cross2(edge, p - a);
+        // With slack ≥ 0 a point on the inner side passes whatever the edge's length: no root taken.
+        if (side >= 0 && slack >= 0) continue;
+        if (side < -slack * edge.norm()) return false;
     }
     return true;
 }
@@ -123,7 +126,10 @@ int applyCentroidRule(const RankPoint* points, int count, const RankingRule& rul
         for (int e = 0; e < keptSize && !restore; ++e) {
             const Vec2& a = hull[e];
             const Vec2 edge = hull[e + 1 == keptSize ? 0 : e + 1] - a;
-            if (!(cross2(edge, centroid - a) < -rule.tolerance * edge.norm())) continue;  // inside this edge
+            // Inside this edge: on its inner side (no root needed where the tolerance is ≥ 0), or
+            // outside by no more than the tolerance.
+            const double side = cross2(edge, centroid - a);
+            if ((side >= 0 && rule.tolerance >= 0) || !(side < -rule.tolerance * edge.norm())) continue;
             for (int k = 0; k < freeCount && !restore; ++k) restore = cross2(edge, points[free[k]].planar - a) < 0;
             if (!restore) break;  // separated from every point by this edge's line
         }
