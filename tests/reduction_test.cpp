@@ -2,8 +2,10 @@
 // solver gets"), against exact answers: the deepest point first, every prefix covering a stated
 // fraction of the best subset of its size (a brute-force oracle), the swapped call giving the
 // mirrored set, the same points under tiny perturbations, and the centroid rule.
+#include "box_poses.hpp"
 #include "geometry_oracles.hpp"
 #include "contact/reduction.hpp"
+#include "geometry/box_shape.hpp"
 #include "reduction_reference.hpp"
 
 #include <gdcontact/gdcontact.hpp>
@@ -656,4 +658,79 @@ TEST_CASE("The ranking of a convex cycle by its hull neighbours chooses exactly 
     CHECK(polygons >= 100000);
     CHECK(certified > polygons / 2);
     CHECK(certified < polygons - 5000);  // the near misses are there too
+}
+
+// The same comparison on the points the ranking really gets from two box faces: the clip and lift
+// of the features the pipeline chose (intersectFeatures, as the box–box path calls it) on 250000
+// random box pairs resting face on face at any yaw, at the angular tolerance or deep, ranked
+// with emitManifold's rule (the pair's tolerance, the bodies' centroids on the plane) at every
+// budget — the certified share stated: the clip's output is a strictly convex cycle wherever its
+// corners are not within rounding of a straight angle.
+TEST_CASE("On box face pairs' clipped points the ranking chooses exactly what the former code chose") {
+    std::mt19937 random(2030);
+    std::uniform_real_distribution<double> unit(0, 1);
+    const BoxPoseKind kinds[3] = {BoxPoseKind::RestingFace, BoxPoseKind::FaceNearTolerance, BoxPoseKind::Deep};
+    long polygons = 0, fivePlus = 0, certified = 0, compared = 0, differing = 0;
+    for (int trial = 0; trial < 250000; ++trial) {
+        const Vec3 halfA = randomHalfExtents(random);
+        Vec3 halfB = randomHalfExtents(random);
+        if (trial % 3 != 0)  // comparable faces: their overlap has corners of both
+            halfB = halfA.cwiseProduct(Vec3(0.6 + 0.8 * unit(random), 0.6 + 0.8 * unit(random), 0.6 + 0.8 * unit(random)));
+        const Polytope a = Polytope::box(halfA), b = Polytope::box(halfB);
+        const double size = a.radius() + b.radius();
+        Settings settings;
+        settings.margin = unit(random) < 0.5 ? 0.0 : unit(random) * 0.02 * size;
+        settings.spanContactRegion = unit(random) < 0.5;
+        if (unit(random) < 0.2) settings.angularTolerance = unit(random) * 0.7;
+        // Two of three: B (of sizes within ±40 % of A's) resting on A's top face at any yaw, tilted
+        // by up to 0.01 rad, sunk by up to 0.2 % of the size, over a random point of that face
+        // (most such regions have 5–8 corners); else box_poses.hpp's resting, near-tolerance and
+        // deep kinds.
+        Pose relative;
+        if (trial % 3 != 0) {
+            const Mat3 rotation = tilt(random, 0.01) * rotationAbout(Vec3::UnitZ(), 6.283185307179586 * unit(random));
+            const double lowest = (rotation.transpose() * Vec3::UnitZ()).cwiseAbs().dot(halfB);
+            const Vec3 over((2 * unit(random) - 1) * halfA.x(), (2 * unit(random) - 1) * halfA.y(), 0);
+            relative = Pose{rotation, over + Vec3(0, 0, halfA.z() + lowest - 0.002 * size * unit(random))};
+        } else {
+            relative = boxPoseOfKind(kinds[trial / 3 % 3], halfA, halfB, settings.angularTolerance, 0.8, random);
+        }
+        const Manifold manifold = collide(a, Pose{}, b, relative, settings);  // A at the identity: its frame is the world's
+        if (manifold.pointCount == 0 || manifold.featureA.type != FeatureType::Face ||
+            manifold.featureB.type != FeatureType::Face)
+            continue;
+        const detail::BoxFeature faceA = detail::boxFeature(a, manifold.featureA, nullptr);
+        const detail::BoxFeature faceB = detail::boxFeature(b, manifold.featureB, &relative);
+        const Vec3& n = manifold.normal;
+        const double tolerance = 1e-9 * size;
+        detail::LiftedPoints lifted;
+        detail::intersectFeatures(view(faceA), view(faceB), n, tolerance, -settings.margin, settings.spanContactRegion, lifted);
+        const int count = static_cast<int>(lifted.size());
+        if (count < 3) continue;
+        std::vector<detail::RankPoint> points;
+        for (const auto& p : lifted) points.push_back({p.planar, p.depth, p.position.dot(detail::identityDirection())});
+        ++polygons;
+        fivePlus += count >= 5;
+        certified += count >= 5 && detail::isStrictlyConvexCycle(points.data(), count);
+        Vec3 u, v;
+        detail::planeBasis(n, u, v);
+        const Vec2 centroids[2] = {Vec2::Zero(), Vec2(relative.position.dot(u), relative.position.dot(v))};
+        for (int budget = 1; budget <= count + 1; ++budget) {
+            detail::RankingRule rule{budget, settings.reductionHysteresis, tolerance, detail::identityDirection()};
+            if (count > budget && budget >= 3) rule.centroids = centroids, rule.centroidCount = 2;
+            ++compared;
+            const bool same = ranksAsFormer(points.data(), count, rule);
+            if (!same) {
+                ++differing;
+                INFO("trial " << trial << " points " << count << " budget " << budget);
+                CHECK(same);
+            }
+        }
+    }
+    WARN(polygons << " clipped face pairs of 3 or more points, " << fivePlus << " of 5 or more, " << certified
+                  << " of them certified cycles; " << compared << " rankings compared, " << differing << " differ");
+    CHECK(differing == 0);
+    CHECK(compared >= 100000);
+    CHECK(fivePlus >= 50000);
+    CHECK(certified > fivePlus / 2);
 }
