@@ -196,6 +196,9 @@ int rankConvexCycle(const RankPoint* points, int count, const RankingRule& rule,
     };
     double deepest = -INFINITY;
     for (int k = 0; k < count; ++k) deepest = std::max(deepest, value[k] = points[k].depth);
+    // A non-finite depth finds no first point: the general path answers as it always did. Every
+    // later pick finds one: the certificate held, so the points are finite, and the band
+    // (keep = 1 − hysteresis, within [0.9, 1] by Settings) admits at least the best value.
     const int first = pickAtLeast(deepest - rule.tolerance);
     if (first < 0) return -1;
     chosen[0] = first, freeMask &= ~(std::uint32_t{1} << first);
