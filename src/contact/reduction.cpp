@@ -289,8 +289,9 @@ bool isStrictlyConvexCycle(const RankPoint* points, int count) {
     }
     // Every difference of two of the points is at most (sumX, sumY)/2 in each coordinate (a
     // closed polygon's extent is at most half its edges' total), so a computed cross product of
-    // two differences is off by at most ~6.1 ε·sumX·sumY/4 (ε = 2^-53): the margin 1e-13·sumX·sumY
-    // is over 1000 times that. Every turn certain and left, the boundary winding once: a strictly
+    // two differences is off by at most ~2 ε·sumX·sumY (ε = 2^-53, three roundings of each of two
+    // products of at most sumX/2·sumY/2, and the result's): the margin 1e-13·sumX·sumY is over
+    // 400 times that. Every turn certain and left, the boundary winding once: a strictly
     // convex polygon, and (its smallest triangle of vertices is one of three consecutive ones)
     // every cross product of differences of three of the points has its true sign. The area
     // stays far from underflow and overflow so that the bound holds (else: not certified).
