@@ -2,8 +2,10 @@
 // solver gets"), against exact answers: the deepest point first, every prefix covering a stated
 // fraction of the best subset of its size (a brute-force oracle), the swapped call giving the
 // mirrored set, the same points under tiny perturbations, and the centroid rule.
+#include "box_poses.hpp"
 #include "geometry_oracles.hpp"
 #include "contact/reduction.hpp"
+#include "geometry/box_shape.hpp"
 #include "reduction_reference.hpp"
 
 #include <gdcontact/gdcontact.hpp>
@@ -513,4 +515,222 @@ TEST_CASE("The ranking chooses what the former code chose on exact ties and hyst
     WARN(compared << " rankings of tied sets compared, " << differing << " differ");
     CHECK(differing == 0);
     CHECK(compared >= 100000);
+}
+
+// The certificate that lets the ranking take each free point's gain from its two neighbours on the
+// kept hull (isStrictlyConvexCycle), against exact answers: convex polygons counter-clockwise in
+// any rotation of their order are certified; clockwise order, a second winding (a pentagram), a
+// repeated point, a point exactly on an edge, a reflex vertex and a turn within rounding are not.
+TEST_CASE("Only a strictly convex counter-clockwise cycle is certified for the ranking's neighbour gains") {
+    auto cycle = [](std::vector<Vec2> planar) {
+        std::vector<detail::RankPoint> points;
+        for (const Vec2& q : planar) points.push_back({q, 0, 0});
+        return detail::isStrictlyConvexCycle(points.data(), static_cast<int>(points.size()));
+    };
+    const std::vector<Vec2> square{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    CHECK(cycle(square));
+    CHECK(cycle({{1, 1}, {0, 1}, {0, 0}, {1, 0}}));                  // started elsewhere
+    CHECK(cycle({{0, 0}, {2, 0}, {0, 1}}));                          // a triangle
+    CHECK_FALSE(cycle({{0, 0}, {0, 1}, {1, 1}, {1, 0}}));            // clockwise
+    CHECK_FALSE(cycle({{0, 0}, {1, 0}, {2, 0}, {1, 1}}));            // a point on an edge
+    CHECK_FALSE(cycle({{0, 0}, {1, 0}, {1, 0}, {1, 1}, {0, 1}}));    // a repeated point
+    CHECK_FALSE(cycle({{0, 0}, {1, 0}, {0.5, 0.5}, {1, 1}, {0, 1}}));  // a reflex vertex
+    CHECK_FALSE(cycle({{0, 0}, {1, 0}}));                            // a segment
+    CHECK_FALSE(cycle({{0, 0}, {1, 0}, {2, 1e-14}, {1, 1}}));        // a turn within the rounding margin
+    CHECK(cycle({{0, 0}, {1, 0}, {2, 1e-9}, {1, 1}}));               // a small turn beyond it
+    // A regular pentagon visited twice around (every turn left, the boundary winding twice).
+    std::vector<Vec2> pentagram;
+    for (int i = 0; i < 5; ++i) {
+        const double angle = 6.283185307179586 * (2 * i % 5) / 5;
+        pentagram.push_back({std::cos(angle), std::sin(angle)});
+    }
+    CHECK_FALSE(cycle(pentagram));
+    // An octagon in cyclic order and its order reversed.
+    std::vector<Vec2> octagon;
+    for (int i = 0; i < 8; ++i) octagon.push_back({std::cos(0.3 + 0.785 * i), std::sin(0.3 + 0.785 * i)});
+    CHECK(cycle(octagon));
+    std::reverse(octagon.begin(), octagon.end());
+    CHECK_FALSE(cycle(octagon));
+}
+
+// The ranking of a certified cycle (the vertices of a strictly convex polygon in cyclic order, what
+// the clip of two faces gives) takes each free point's gain from its neighbours on the kept hull and
+// keeps the hull as links: it must choose the same points in the same order as the former code
+// (tests/reduction_reference.hpp, verbatim) — on 120000 polygons of that kind and its near misses:
+// the clips of two rectangles (rotated, offset, nearly aligned down to 1e-9 rad, so corners of
+// every size down to below the certificate's margin), regular polygons with points moved onto or
+// within rounding of an edge, thin slivers, scales from 1e-4 to 1e4, the order started anywhere,
+// reversed or visited twice; depths equal (a resting face) or tilted; every budget, three
+// hysteresis bands, 0–2 centroids. The certified share is stated and must be most of them.
+TEST_CASE("The ranking of a convex cycle by its hull neighbours chooses exactly what the former code chose") {
+    std::mt19937 random(2029);
+    std::uniform_real_distribution<double> unit(0, 1);
+    auto rotated = [](const Vec2& p, double angle) {
+        return Vec2(std::cos(angle) * p.x() - std::sin(angle) * p.y(), std::sin(angle) * p.x() + std::cos(angle) * p.y());
+    };
+    long polygons = 0, certified = 0, compared = 0, differing = 0, neighbourGains = 0;
+    for (int trial = 0; trial < 120000; ++trial) {
+        const int kind = trial % 6;
+        const double scale = std::pow(10.0, -4 + 8 * unit(random));
+        std::vector<Vec2> planar;
+        if (kind <= 2) {
+            // The clip of two rectangles: kind 0 at any angle, kind 1 nearly aligned (1e-9 to
+            // 1e-2 rad), kind 2 aligned to within rounding with one offset corner.
+            const double w1 = 0.2 + unit(random), h1 = 0.2 + unit(random), w2 = 0.2 + unit(random), h2 = 0.2 + unit(random);
+            const double angle = kind == 0 ? 6.283185307179586 * unit(random)
+                                 : kind == 1 ? std::pow(10.0, -9 + 7 * unit(random)) * (unit(random) < 0.5 ? -1 : 1)
+                                             : 1e-15 * (unit(random) - 0.5);
+            const Vec2 offset(0.6 * (unit(random) - 0.5), 0.6 * (unit(random) - 0.5));
+            const double frame = 6.283185307179586 * unit(random);
+            Vec2 first[4] = {{-w1, -h1}, {w1, -h1}, {w1, h1}, {-w1, h1}};
+            Vec2 second[4] = {{-w2, -h2}, {w2, -h2}, {w2, h2}, {-w2, h2}};
+            for (Vec2& p : first) p = rotated(p, frame);
+            for (Vec2& p : second) p = rotated(rotated(p, angle) + offset, frame);
+            const detail::SmallVector<Vec2, 16> clip = detail::clipConvexPolygon(second, 4, first, 4, 1e-9);
+            for (const Vec2& p : clip) planar.push_back(scale * p);
+        } else if (kind == 3) {
+            // A regular polygon, one point moved onto an edge's midpoint, within rounding of it or
+            // just outside by a little more than the certificate's margin.
+            const int n = 5 + trial % 8;
+            for (int i = 0; i < n; ++i) {
+                const double angle = 6.283185307179586 * (i + 0.3 * unit(random)) / n;
+                planar.push_back(scale * Vec2(std::cos(angle), std::sin(angle)));
+            }
+            const int i = static_cast<int>(unit(random) * n) % n;
+            const Vec2 a = planar[(i + n - 1) % n], b = planar[(i + 1) % n];
+            const Vec2 outward = Vec2(b.y() - a.y(), a.x() - b.x()).normalized();
+            const double lift[4] = {0.0, 1e-16, 1e-13, 1e-10};
+            planar[i] = 0.5 * (a + b) + outward * (scale * lift[trial / 6 % 4] * (unit(random) < 0.5 ? -1 : 1));
+        } else if (kind == 4) {
+            // A thin sliver: an ellipse of aspect ratio 1e-2 to 1e-8.
+            const int n = 5 + trial % 12;
+            const double thin = std::pow(10.0, -8 + 6 * unit(random)), turn = 6.283185307179586 * unit(random);
+            std::vector<double> angles;
+            for (int i = 0; i < n; ++i) angles.push_back(6.283185307179586 * unit(random));
+            std::sort(angles.begin(), angles.end());
+            for (double t : angles) planar.push_back(scale * rotated(Vec2(std::cos(t), thin * std::sin(t)), turn));
+        } else {
+            for (const auto& q : randomPolygon(random, 5 + trial % 12)) planar.push_back(scale * q.planar);
+        }
+        const int n = static_cast<int>(planar.size());
+        if (n < 3) continue;
+        // The order: started anywhere; now and then reversed, visited twice around, or with a repeat.
+        std::rotate(planar.begin(), planar.begin() + static_cast<int>(unit(random) * n) % n, planar.end());
+        if (trial % 23 == 0) std::reverse(planar.begin(), planar.end());
+        if (trial % 29 == 0 && n % 2 == 1) {
+            std::vector<Vec2> twice;
+            for (int i = 0; i < n; ++i) twice.push_back(planar[2 * i % n]);
+            planar = twice;
+        }
+        if (trial % 31 == 0) planar[static_cast<size_t>(n / 2)] = planar[static_cast<size_t>(n / 2 - 1)];
+        // Depths: a resting face (all equal) or a tilted one (affine), now and then a tie of two.
+        std::vector<detail::RankPoint> points;
+        const Vec2 tilt(unit(random) - 0.5, unit(random) - 0.5);
+        for (const Vec2& q : planar) {
+            const double depth = trial % 2 ? 0.005 * scale : 0.005 * scale + 0.01 * tilt.dot(q);
+            points.push_back({q, depth, q.x() * 0.7548776662466927 + q.y() * 0.5698402909980532});
+        }
+        if (trial % 5 == 0) points[1].identity = points[2].identity;
+        ++polygons;
+        const bool isCycle = detail::isStrictlyConvexCycle(points.data(), n);
+        certified += isCycle;
+        const double hysteresis = trial % 3 == 0 ? 0.0 : trial % 3 == 1 ? 0.01 : 0.1;
+        const Vec2 centroids[2] = {scale * Vec2(0.3 * (unit(random) - 0.5), 0.3 * (unit(random) - 0.5)),
+                                   scale * Vec2(unit(random) - 0.5, unit(random) - 0.5)};
+        for (int budget = 1; budget <= n + 1; ++budget) {
+            detail::RankingRule rule = ruleFor(budget, hysteresis);
+            rule.tolerance = 1e-9 * scale;
+            rule.centroids = centroids;
+            rule.centroidCount = trial / 6 % 3;
+            ++compared;
+            neighbourGains += isCycle && n >= 5 && std::min(budget, n) - 3 - (budget >= n ? 1 : 0) >= 1;
+            const bool same = ranksAsFormer(points.data(), n, rule);
+            if (!same) {
+                ++differing;
+                INFO("trial " << trial << " kind " << kind << " points " << n << " budget " << budget << " cycle " << isCycle);
+                CHECK(same);
+            }
+        }
+    }
+    WARN(polygons << " polygons, " << certified << " certified cycles; " << compared << " rankings compared, "
+                  << neighbourGains << " by hull neighbours (where no spread step came first), " << differing << " differ");
+    CHECK(differing == 0);
+    CHECK(polygons >= 100000);
+    CHECK(certified > polygons / 2);
+    CHECK(certified < polygons - 5000);  // the near misses are there too
+}
+
+// The same comparison on the points the ranking really gets from two box faces: the clip and lift
+// of the features the pipeline chose (intersectFeatures, as the box–box path calls it) on 250000
+// random box pairs resting face on face at any yaw, at the angular tolerance or deep, ranked
+// with emitManifold's rule (the pair's tolerance, the bodies' centroids on the plane) at every
+// budget — the certified share stated: the clip's output is a strictly convex cycle wherever its
+// corners are not within rounding of a straight angle.
+TEST_CASE("On box face pairs' clipped points the ranking chooses exactly what the former code chose") {
+    std::mt19937 random(2030);
+    std::uniform_real_distribution<double> unit(0, 1);
+    const BoxPoseKind kinds[3] = {BoxPoseKind::RestingFace, BoxPoseKind::FaceNearTolerance, BoxPoseKind::Deep};
+    long polygons = 0, fivePlus = 0, certified = 0, compared = 0, differing = 0;
+    for (int trial = 0; trial < 250000; ++trial) {
+        const Vec3 halfA = randomHalfExtents(random);
+        Vec3 halfB = randomHalfExtents(random);
+        if (trial % 3 != 0)  // comparable faces: their overlap has corners of both
+            halfB = halfA.cwiseProduct(Vec3(0.6 + 0.8 * unit(random), 0.6 + 0.8 * unit(random), 0.6 + 0.8 * unit(random)));
+        const Polytope a = Polytope::box(halfA), b = Polytope::box(halfB);
+        const double size = a.radius() + b.radius();
+        Settings settings;
+        settings.margin = unit(random) < 0.5 ? 0.0 : unit(random) * 0.02 * size;
+        settings.spanContactRegion = unit(random) < 0.5;
+        if (unit(random) < 0.2) settings.angularTolerance = unit(random) * 0.7;
+        // Two of three: B (of sizes within ±40 % of A's) resting on A's top face at any yaw, tilted
+        // by up to 0.01 rad, sunk by up to 0.2 % of the size, over a random point of that face
+        // (most such regions have 5–8 corners); else box_poses.hpp's resting, near-tolerance and
+        // deep kinds.
+        Pose relative;
+        if (trial % 3 != 0) {
+            const Mat3 rotation = tilt(random, 0.01) * rotationAbout(Vec3::UnitZ(), 6.283185307179586 * unit(random));
+            const double lowest = (rotation.transpose() * Vec3::UnitZ()).cwiseAbs().dot(halfB);
+            const Vec3 over((2 * unit(random) - 1) * halfA.x(), (2 * unit(random) - 1) * halfA.y(), 0);
+            relative = Pose{rotation, over + Vec3(0, 0, halfA.z() + lowest - 0.002 * size * unit(random))};
+        } else {
+            relative = boxPoseOfKind(kinds[trial / 3 % 3], halfA, halfB, settings.angularTolerance, 0.8, random);
+        }
+        const Manifold manifold = collide(a, Pose{}, b, relative, settings);  // A at the identity: its frame is the world's
+        if (manifold.pointCount == 0 || manifold.featureA.type != FeatureType::Face ||
+            manifold.featureB.type != FeatureType::Face)
+            continue;
+        const detail::BoxFeature faceA = detail::boxFeature(a, manifold.featureA, nullptr);
+        const detail::BoxFeature faceB = detail::boxFeature(b, manifold.featureB, &relative);
+        const Vec3& n = manifold.normal;
+        const double tolerance = 1e-9 * size;
+        detail::LiftedPoints lifted;
+        detail::intersectFeatures(view(faceA), view(faceB), n, tolerance, -settings.margin, settings.spanContactRegion, lifted);
+        const int count = static_cast<int>(lifted.size());
+        if (count < 3) continue;
+        std::vector<detail::RankPoint> points;
+        for (const auto& p : lifted) points.push_back({p.planar, p.depth, p.position.dot(detail::identityDirection())});
+        ++polygons;
+        fivePlus += count >= 5;
+        certified += count >= 5 && detail::isStrictlyConvexCycle(points.data(), count);
+        Vec3 u, v;
+        detail::planeBasis(n, u, v);
+        const Vec2 centroids[2] = {Vec2::Zero(), Vec2(relative.position.dot(u), relative.position.dot(v))};
+        for (int budget = 1; budget <= count + 1; ++budget) {
+            detail::RankingRule rule{budget, settings.reductionHysteresis, tolerance, detail::identityDirection()};
+            if (count > budget && budget >= 3) rule.centroids = centroids, rule.centroidCount = 2;
+            ++compared;
+            const bool same = ranksAsFormer(points.data(), count, rule);
+            if (!same) {
+                ++differing;
+                INFO("trial " << trial << " points " << count << " budget " << budget);
+                CHECK(same);
+            }
+        }
+    }
+    WARN(polygons << " clipped face pairs of 3 or more points, " << fivePlus << " of 5 or more, " << certified
+                  << " of them certified cycles; " << compared << " rankings compared, " << differing << " differ");
+    CHECK(differing == 0);
+    CHECK(compared >= 100000);
+    CHECK(fivePlus >= 50000);
+    CHECK(certified > fivePlus / 2);
 }

@@ -48,6 +48,20 @@ struct RankPoint {
 /// (min(count, maxCount); with a given prefix at least rule.fixedCount).
 int rankContacts(const RankPoint* points, int count, const RankingRule& rule, int* chosen);
 
+/// Whether `points` (their `planar`), in the given order, are the vertices of a strictly convex
+/// counter-clockwise polygon, certified despite rounding: every turn left by more than the
+/// rounding of any cross product of the points' differences, the boundary winding once. Then every
+/// such cross product the ranking computes has its true sign, so the ranking may take each free
+/// point's gain from its neighbours on the kept hull alone (what the clip of two faces gives).
+bool isStrictlyConvexCycle(const RankPoint* points, int count);
+
+/// Whether `points` (their `planar`), in the given order, are the vertices of a strictly convex
+/// counter-clockwise polygon, certified despite rounding: every turn left by more than the
+/// rounding of any cross product of the points' differences, the boundary winding once. Then every
+/// cross product of three of the points has its true sign, and rankContacts takes each free
+/// point's area gain from its two neighbours on the kept hull alone (the clip of two faces).
+bool isStrictlyConvexCycle(const RankPoint* points, int count);
+
 /// The same for lifted points (their `planar` set when there are 3 or more).
 int rankContacts(const LiftedPoints& points, const RankingRule& rule, int* chosen);
 
