@@ -48,9 +48,15 @@ Vec3 minimumOverlapFaceNormal(const MinkowskiDifference& pair) {
 // The pair's overlap along `direction`, reusing `normalOverlap` (the overlap along `normal`, which
 // the caller already has) when the direction is the normal itself: the face the normal came from
 // is usually among the candidates of each later step. overlapAlong is a deterministic function of
-// the direction's value, so the reused number is the one it would compute.
+// the direction's value, so the reused number is the one it would compute. Likewise an overlap an
+// earlier stage already knows along exactly this direction (pair.knownOverlaps: the hull
+// enumeration's, along the selected faces' normals), equal to the search's within rounding.
 double overlapAlong(const MinkowskiDifference& pair, const Vec3& direction, const Vec3& normal, double normalOverlap) {
-    return direction == normal ? normalOverlap : pair.overlapAlong(direction);
+    if (direction == normal) return normalOverlap;
+    if (const KnownOverlaps* known = pair.knownOverlaps)
+        for (int i = 0; i < known->count; ++i)
+            if (direction == known->directions[i]) return known->overlaps[i];
+    return pair.overlapAlong(direction);
 }
 
 
@@ -397,15 +403,22 @@ namespace {
 // ones replaced, kept so that tests can prove the two equal (collide_general.hpp).
 struct GeneralPairHooks {
     static constexpr bool kDelegatesRareCases = false;  // it is where the others delegate to
-    GeneralPairHooks(const Settings& settings, bool alwaysConfirmDepth, bool enumerateSmallHulls, bool boundFaceOverlaps)
+    GeneralPairHooks(const Settings& settings, bool alwaysConfirmDepth, bool enumerateSmallHulls, bool boundFaceOverlaps,
+                     bool carryHullGauge)
         : settings(settings),
           alwaysConfirmDepth(alwaysConfirmDepth),
           enumerateSmallHulls(enumerateSmallHulls),
-          boundFaceOverlaps(boundFaceOverlaps) {}
+          boundFaceOverlaps(boundFaceOverlaps),
+          carryHullGauge(carryHullGauge) {}
     const Settings& settings;
     bool alwaysConfirmDepth;
     bool enumerateSmallHulls;
     bool boundFaceOverlaps;
+    bool carryHullGauge;
+    // What the hull enumeration found (empty unless it ran with carryHullGauge), and the overlaps
+    // along the selected faces' normals that refineNormal reads from it (pair.knownOverlaps).
+    HullGaugeCarry carry;
+    KnownOverlaps known;
     bool separatingAxis = settings.normalMethod == NormalMethod::SeparatingAxis;
     AngularTolerance angularTolerance{settings.angularTolerance};
     // With each feature its pieces: a face's cap, an edge's chain.
@@ -418,7 +431,7 @@ struct GeneralPairHooks {
     }
 
     // Stage 1: contact normal from the growth distance (or, to measure the trade, the SAT's).
-    Stage1 growthNormal(const PairFrame& frame, const Vec3&) const {
+    Stage1 growthNormal(const PairFrame& frame, const Vec3&) {
         const MinkowskiDifference& pair = frame.pair;
         Stage1 stage1;
         if (separatingAxis) {
@@ -426,11 +439,21 @@ struct GeneralPairHooks {
             stage1.normal = axis.normal, stage1.normalOverlap = axis.overlap;
             return stage1;  // no overhang check: no face overlaps less than the SAT's normal
         }
+        const Polytope& a = frame.a;
+        const Polytope& b = frame.b;
+        const bool searchesWithoutState =
+            (a.isBox() || static_cast<int>(a.vertices().size()) <= pair.bruteForceLimit) &&
+            (b.isBox() || static_cast<int>(b.vertices().size()) <= pair.bruteForceLimit);
         // The hull's hook: two small polytopes enumerate K's facets (hull_gauge.hpp), the same σ and
-        // facet the ray cast converges to; large ones (and two boxes, in closed form) cast.
-        const GrowthDistance growth = enumerateSmallHulls && hullGaugeApplies(frame.a, frame.b)
-                                          ? hullGrowth(pair)
-                                          : growthDistance(pair, settings, /*needWitnesses=*/false);
+        // facet the ray cast converges to; large ones (and two boxes, in closed form) cast. What the
+        // enumeration evaluated on the way is carried to the later stages (refineNormal's overlaps,
+        // the depth certificate) where no search keeps state: a skipped search of a hill climb
+        // would move the later climbs' starting vertices, and with them the ray cast's answer.
+        const bool enumerates = enumerateSmallHulls && hullGaugeApplies(a, b);
+        const bool carrying = enumerates && carryHullGauge && searchesWithoutState;
+        const GrowthDistance growth = enumerates ? hullGrowth(pair, carrying ? &carry : nullptr)
+                                                 : growthDistance(pair, settings, /*needWitnesses=*/false);
+        if (carrying) pair.knownOverlaps = &known;
         stage1.normal = growth.valid ? growth.normal : minimumOverlapFaceNormal(pair);
         stage1.normalOverlap = pair.overlapAlong(stage1.normal);
         stage1.growthNormal = growth.valid;
@@ -443,11 +466,6 @@ struct GeneralPairHooks {
         // warm start (boxes, brute force): the check's searches move the hill climb's starting
         // vertices, and a climb from elsewhere may stop at another vertex of a face the direction
         // is normal to, which changes later values by a rounding.
-        const Polytope& a = frame.a;
-        const Polytope& b = frame.b;
-        const bool searchesWithoutState =
-            (a.isBox() || static_cast<int>(a.vertices().size()) <= pair.bruteForceLimit) &&
-            (b.isBox() || static_cast<int>(b.vertices().size()) <= pair.bruteForceLimit);
         stage1.faceOverlapLowerBound =
             boundFaceOverlaps && searchesWithoutState
                 ? std::max(growth.faceOverlapLowerBound, a.inradius() + b.inradius() - frame.centreDistance)
@@ -475,11 +493,19 @@ struct GeneralPairHooks {
         return preferNearbyFaceNormal(frame.pair, manifold.featureA, piecesA, manifold.featureB, piecesB,
                                       frame.tolerance, normal, normalOverlap);
     }
-    FeatureGeometry featureA(const PairFrame& frame, const Feature& feature) const {
-        return featureGeometry(frame.a, feature, piecesA, Pose{});
+    // The features in A's frame; a selected face whose overlap the enumeration has is known to
+    // refineNormal along its normal exactly as refineNormal spells it (A's planeNormal, B's negated).
+    FeatureGeometry featureA(const PairFrame& frame, const Feature& feature) {
+        FeatureGeometry geometry = featureGeometry(frame.a, feature, piecesA, Pose{});
+        if (feature.type == FeatureType::Face && (carry.knownA >> feature.index) & 1)
+            known.add(geometry.planeNormal, carry.overlapA[feature.index]);
+        return geometry;
     }
-    FeatureGeometry featureB(const PairFrame& frame, const Feature& feature) const {
-        return featureGeometry(frame.b, feature, piecesB, frame.bInA);
+    FeatureGeometry featureB(const PairFrame& frame, const Feature& feature) {
+        FeatureGeometry geometry = featureGeometry(frame.b, feature, piecesB, frame.bInA);
+        if (feature.type == FeatureType::Face && (carry.knownB >> feature.index) & 1)
+            known.add(-geometry.planeNormal, carry.overlapB[feature.index]);
+        return geometry;
     }
     bool refinesNormal() const { return !separatingAxis; }  // SAT's is exact already
 
@@ -504,6 +530,16 @@ struct GeneralPairHooks {
         // The ray cast converges to within its tolerance of the exit: the certificate keeps that much
         // on the safe side, so that it skips the cast only where the cast could not have added a point.
         const double certifiedSlack = slack - 2 * settings.rayCastTolerance * frame.size;
+        // The exit facet of the enumeration first: a plane of A − B, so it bounds the penetration
+        // along n like penetrationCertified's candidates (t* ≤ overlap(m)/(m·n) for m·n > 0), and for
+        // a resting pair it is mostly the facet the line along n leaves by too (the centre line and
+        // n nearly agree): the certificate without projecting the features or searching a support.
+        if (!alwaysConfirmDepth && deepestPoint && carry.exitKnown) {
+            const Vec3& m = carry.exitDirection;
+            const double along = m.dot(normal);
+            if (along > 1e-6 * m.norm() && carry.exitOverlap / along <= deepestPoint->depth + certifiedSlack)
+                return DepthCheck::Confirmed;
+        }
         if (!alwaysConfirmDepth && deepestPoint &&
             penetrationCertified(*deepestPoint, featureA, featureB, normal, frame.pair, certifiedSlack,
                                  frame.tolerance))
@@ -525,9 +561,9 @@ struct GeneralPairHooks {
 
 Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
                         const Settings& settings, bool alwaysConfirmDepth, bool enumerateSmallHulls,
-                        bool boundFaceOverlaps) {
+                        bool boundFaceOverlaps, bool carryHullGauge) {
     Manifold manifold;
-    GeneralPairHooks hooks(settings, alwaysConfirmDepth, enumerateSmallHulls, boundFaceOverlaps);
+    GeneralPairHooks hooks(settings, alwaysConfirmDepth, enumerateSmallHulls, boundFaceOverlaps, carryHullGauge);
     composeStages(hooks, a, poseA, b, poseB, settings, manifold);  // never delegates
     return manifold;
 }

@@ -91,7 +91,7 @@ int edgeBetween(const Polytope& polytope, int from, int to) {
 
 }  // namespace
 
-GrowthDistance hullGrowth(const MinkowskiDifference& pair) {
+GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry) {
     // A closed polytope has V − E + F = 2 and every face at least three edges, so V, F ≤ 2E/3 + 2.
     constexpr int kMax = kHullGaugeMaxEdges;
     GrowthDistance result;
@@ -109,14 +109,15 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair) {
     // The exit so far as the ratio exitAlong/exitSupport = (m·d)/h_K(m) (0/1: none yet), compared by
     // cross-multiplication, with boxGrowth's tie rule: a facet within 1e-12 of the best joins it and
     // the normal is the normalised sum of the tied ones (the middle of their cone).
+    // `exitDirection` is the facet's normal as `along` and `supportValue` measure it (for the carry).
     double exitSupport = 1, exitAlong = 0;
-    Vec3 tiedNormals = Vec3::Zero();
-    auto consider = [&](double along, double supportValue, auto&& normal) {
+    Vec3 tiedNormals = Vec3::Zero(), exitDirection = Vec3::Zero();
+    auto consider = [&](double along, double supportValue, const Vec3& direction, auto&& normal) {
         const double distance = supportValue * exitAlong, exit = exitSupport * along;
         if (distance < exit * (1 - 1e-12)) {
             if (distance > exit * (1 - 2e-12)) tiedNormals += normal();
             else tiedNormals = normal();
-            exitSupport = supportValue, exitAlong = along;
+            exitSupport = supportValue, exitAlong = along, exitDirection = direction;
         } else if (distance <= exit * (1 + 1e-12)) {
             tiedNormals += normal();
         }
@@ -150,7 +151,7 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair) {
         if (!(along > 0)) return false;
         const double supportB = m.dot(pair.centreB - verticesB[edgeB.tail]);
         const double before = exitAlong;
-        consider(along, supportA + supportB, [&] { return Vec3(m / std::sqrt(lengthSquared)); });
+        consider(along, supportA + supportB, m, [&] { return Vec3(m / std::sqrt(lengthSquared)); });
         return exitAlong != before;
     };
     // Whether `exit` lies inside the parallelogram facet (edge A − c_A) + (c_B − edge B) of K by more
@@ -176,6 +177,12 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair) {
         if (!result.valid) return result;
         result.normal = tiedNormals.normalized();
         result.growth = growth;
+        if (carry) {
+            // The exit facet's plane: K's support along it less its reach along d, the pair's overlap.
+            carry->exitKnown = true;
+            carry->exitDirection = exitDirection;
+            carry->exitOverlap = exitSupport - exitAlong;
+        }
         return result;
     };
     // A's faces: h_K(n) = (offset − n·c_A) + (n·c_B − min n·B) = offset − min n·B + n·d.
@@ -187,8 +194,10 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair) {
         if (!(along > 0)) continue;
         double lowestB = INFINITY;
         for (int i = 0; i < countB; ++i) lowestB = std::min(lowestB, n.dot(verticesB[i]));
+        const double overlap = facesA[f].offset - lowestB;  // max n·A − min n·B
+        if (carry) carry->overlapA[f] = overlap, carry->knownA |= std::uint64_t(1) << f;
         const double before = exitAlong;
-        consider(along, facesA[f].offset - lowestB + along, [&] { return n; });
+        consider(along, overlap + along, n, [&] { return n; });
         if (exitAlong != before) bestFace = f, bestFaceOfA = true;
     }
     // B's faces, turned into A's frame and negated (the Gauss map of −B): with n = R·n_B,
@@ -202,8 +211,10 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair) {
         if (!(along > 0)) continue;
         double lowestA = INFINITY;
         for (int i = 0; i < countA; ++i) lowestA = std::min(lowestA, n.dot(verticesA[i]));
+        const double overlap = facesB[f].offset + n.dot(pair.bInA.position) - lowestA;  // max −n·A − min −n·B
+        if (carry) carry->overlapB[f] = overlap, carry->knownB |= std::uint64_t(1) << f;
         const double before = exitAlong;
-        consider(along, facesB[f].offset + n.dot(pair.bInA.position) - lowestA + along, [&] { return gaussB[f]; });
+        consider(along, overlap + along, gaussB[f], [&] { return gaussB[f]; });
         if (exitAlong != before) bestFace = f, bestFaceOfA = false;
     }
 
@@ -218,7 +229,7 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair) {
     const FaceCheck check = checkFaceExit(pair, bestFace, bestFaceOfA, d * (exitSupport / exitAlong), verticesB, size);
     if (check.inside) return finish();
     const double faceSupport = exitSupport, faceAlong = exitAlong;
-    const Vec3 faceNormals = tiedNormals;
+    const Vec3 faceNormals = tiedNormals, faceDirection = exitDirection;
     {
         const Polytope& faceOwner = bestFaceOfA ? a : b;
         const Polytope& other = bestFaceOfA ? b : a;
@@ -241,7 +252,7 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair) {
             return finish();
     }
     // Back to the faces' answer: every edge pair follows, the ones just tried among them.
-    exitSupport = faceSupport, exitAlong = faceAlong, tiedNormals = faceNormals;
+    exitSupport = faceSupport, exitAlong = faceAlong, tiedNormals = faceNormals, exitDirection = faceDirection;
     // Edge pairs. The edges that can carry an exit facet (a face normal with n·d > 0), each with its
     // direction, a point, its arc's end normals and their cross product.
     struct ArcEdge {
@@ -301,7 +312,7 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair) {
             const double along = m.dot(d);
             if (!(along > 0)) continue;
             const double supportB = m.dot(pointOffsetB - edgeB.point);
-            consider(along, supportA + supportB, [&] { return Vec3(m / std::sqrt(lengthSquared)); });
+            consider(along, supportA + supportB, m, [&] { return Vec3(m / std::sqrt(lengthSquared)); });
         }
     }
     return finish();
