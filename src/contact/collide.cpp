@@ -455,7 +455,8 @@ struct GeneralPairHooks {
                                                  : growthDistance(pair, settings, /*needWitnesses=*/false);
         if (carrying) pair.knownOverlaps = &known;
         stage1.normal = growth.valid ? growth.normal : minimumOverlapFaceNormal(pair);
-        stage1.normalOverlap = pair.overlapAlong(stage1.normal);
+        stage1.normalOverlap = growth.valid && carry.exitSingle ? overlapAlongExit(frame, stage1.normal)
+                                                                : pair.overlapAlong(stage1.normal);
         stage1.growthNormal = growth.valid;
         // A lower bound of every face's overlap, for the overhang check. Any pair has one: along a
         // unit c the overlap is h_{A−c_A}(c) + h_{B−c_B}(−c) − c·d (d = c_B − c_A), and each
@@ -471,6 +472,33 @@ struct GeneralPairHooks {
                 ? std::max(growth.faceOverlapLowerBound, a.inradius() + b.inradius() - frame.centreDistance)
                 : growth.faceOverlapLowerBound;
         return stage1;
+    }
+
+    // pair.overlapAlong(normal) for the growth normal of a single exit facet (carry.exitSingle), bit
+    // for bit, with its support searches (whose vertices stage 2 starts from) made among the facet's
+    // features' vertices: along the facet's normal they are the bodies' supports, and each search
+    // is the brute-force one restricted to them — the first vertex of the largest value, in index
+    // order (a box's is its closed form).
+    double overlapAlongExit(const PairFrame& frame, const Vec3& normal) const {
+        const MinkowskiDifference& pair = frame.pair;
+        auto supportAmong = [](const Polytope& polytope, const Feature& feature, const Vec3& direction) {
+            if (polytope.isBox()) return polytope.supportVertex(direction, 0, -1);
+            int storage[2];
+            const int* indices = nullptr;
+            const int count = featureVertices(polytope, feature, &indices, storage);
+            const std::vector<Vec3>& vertices = polytope.vertices();
+            int best = indices[0];
+            double bestValue = vertices[best].dot(direction);
+            for (int i = 1; i < count; ++i) {
+                const double value = vertices[indices[i]].dot(direction);
+                if (value > bestValue || (value == bestValue && indices[i] < best)) bestValue = value, best = indices[i];
+            }
+            return best;
+        };
+        const Vec3 opposite = -normal;
+        pair.lastSupportA = supportAmong(frame.a, carry.exitFeatureA, normal);
+        pair.lastSupportB = supportAmong(frame.b, carry.exitFeatureB, pair.bInA.rotation.transpose() * opposite);
+        return normal.dot(frame.a.vertices()[pair.lastSupportA]) - normal.dot(pair.vertexB(pair.lastSupportB));
     }
 
     // Stage 2: the Gauss-map search from the support vertex. `first`: the last support searches
