@@ -151,23 +151,28 @@ bool preferNearbyFaceNormal(const MinkowskiDifference& pair, const Feature& feat
     return true;
 }
 
-FeatureGeometry faceGeometry(const Polytope& polytope, int index, const Pose& toCommon) {
+// The feature geometries below place the polytope's vertices in the common frame by `toCommon`,
+// unless `common` has them there already (bit for bit: A's own where toCommon is the identity, B's
+// as the hull enumeration placed them, hull_gauge.hpp).
+FeatureGeometry faceGeometry(const Polytope& polytope, int index, const Pose& toCommon, const Vec3* common) {
     FeatureGeometry geometry;
     geometry.type = FeatureType::Face;
     const Polytope::Face& face = polytope.faces()[index];
-    for (int i = 0; i < face.count; ++i)
-        geometry.points.push_back(toCommon.apply(polytope.vertices()[polytope.faceVertices()[face.first + i]]));
+    for (int i = 0; i < face.count; ++i) {
+        const int vertex = polytope.faceVertices()[face.first + i];
+        geometry.points.push_back(common ? common[vertex] : toCommon.apply(polytope.vertices()[vertex]));
+    }
     geometry.planeNormal = toCommon.rotation * face.normal;
     geometry.planeOffset = face.offset + geometry.planeNormal.dot(toCommon.position);
     return geometry;
 }
 
-FeatureGeometry edgeGeometry(const Polytope& polytope, int index, const Pose& toCommon) {
+FeatureGeometry edgeGeometry(const Polytope& polytope, int index, const Pose& toCommon, const Vec3* common) {
     FeatureGeometry geometry;
     geometry.type = FeatureType::Edge;
     const Polytope::Edge& edge = polytope.edges()[index];
-    geometry.points.push_back(toCommon.apply(polytope.vertices()[edge.tail]));
-    geometry.points.push_back(toCommon.apply(polytope.vertices()[edge.head]));
+    geometry.points.push_back(common ? common[edge.tail] : toCommon.apply(polytope.vertices()[edge.tail]));
+    geometry.points.push_back(common ? common[edge.head] : toCommon.apply(polytope.vertices()[edge.head]));
     return geometry;
 }
 
@@ -184,20 +189,20 @@ void featurePieces(const Polytope& polytope, const Feature& feature, const Vec3&
 // The feature in the common frame; with more than one piece (featurePieces) each is a feature of
 // its own in `capFaces`, intersected one by one.
 FeatureGeometry featureGeometry(const Polytope& polytope, const Feature& feature, const SmallVector<int, 8>& pieces,
-                                const Pose& toCommon) {
+                                const Pose& toCommon, const Vec3* common = nullptr) {
     if (feature.type == FeatureType::Face || feature.type == FeatureType::Edge) {
         // A face's cap or an edge's chain: the same pieces of the one kind.
         auto pieceGeometry = feature.type == FeatureType::Face ? faceGeometry : edgeGeometry;
-        FeatureGeometry geometry = pieceGeometry(polytope, feature.index, toCommon);
+        FeatureGeometry geometry = pieceGeometry(polytope, feature.index, toCommon, common);
         if (pieces.size() > 1) {
             geometry.capFaces.reserve(pieces.size());
-            for (int piece : pieces) geometry.capFaces.push_back(pieceGeometry(polytope, piece, toCommon));
+            for (int piece : pieces) geometry.capFaces.push_back(pieceGeometry(polytope, piece, toCommon, common));
         }
         return geometry;
     }
     FeatureGeometry geometry;
     geometry.type = feature.type;
-    geometry.points.push_back(toCommon.apply(polytope.vertices()[feature.index]));
+    geometry.points.push_back(common ? common[feature.index] : toCommon.apply(polytope.vertices()[feature.index]));
     return geometry;
 }
 
@@ -523,14 +528,18 @@ struct GeneralPairHooks {
     }
     // The features in A's frame; a selected face whose overlap the enumeration has is known to
     // refineNormal along its normal exactly as refineNormal spells it (A's planeNormal, B's negated).
+    // A's vertices need no placing (the identity; it differs only in turning −0 into +0), B's were
+    // placed by the enumeration where it carries.
     FeatureGeometry featureA(const PairFrame& frame, const Feature& feature) {
-        FeatureGeometry geometry = featureGeometry(frame.a, feature, piecesA, Pose{});
+        FeatureGeometry geometry =
+            featureGeometry(frame.a, feature, piecesA, Pose{}, carryHullGauge ? frame.a.vertices().data() : nullptr);
         if (feature.type == FeatureType::Face && (carry.knownA >> feature.index) & 1)
             known.add(geometry.planeNormal, carry.overlapA[feature.index]);
         return geometry;
     }
     FeatureGeometry featureB(const PairFrame& frame, const Feature& feature) {
-        FeatureGeometry geometry = featureGeometry(frame.b, feature, piecesB, frame.bInA);
+        FeatureGeometry geometry =
+            featureGeometry(frame.b, feature, piecesB, frame.bInA, carry.exitKnown ? carry.verticesB.data() : nullptr);
         if (feature.type == FeatureType::Face && (carry.knownB >> feature.index) & 1)
             known.add(-geometry.planeNormal, carry.overlapB[feature.index]);
         return geometry;

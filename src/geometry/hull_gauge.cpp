@@ -30,17 +30,18 @@ namespace {
 // The facet is the face translated, so the point is mapped back onto the face's plane and tested
 // against its edges (counter-clockwise seen from outside: inside is to the left of each), each by
 // more than 1e-9 of the pair's size: `inside` when within all, else `outside` has a bit for each
-// edge k (face vertex k to k + 1) it is not within. `support` is the other body's vertex.
+// edge k (face vertex k to k + 1) it is not within. `support` is the other body's vertex (its first
+// of least value along the face's normal, which the face's evaluation found).
 struct FaceCheck {
     bool inside = false;
     int support = 0;
     std::uint64_t outside = 0;
 };
 
-template <class Points>
-FaceCheck checkFaceExit(const MinkowskiDifference& pair, int face, bool ofA, const Vec3& exit, const Points& verticesB,
-                        double size) {
+FaceCheck checkFaceExit(const MinkowskiDifference& pair, int face, bool ofA, const Vec3& exit, const Vec3* verticesB,
+                        int support, double size) {
     FaceCheck check;
+    check.support = support;
     const Polytope& polytope = ofA ? pair.a : pair.b;
     const Polytope::Face& f = polytope.faces()[face];
     const std::vector<Vec3>& vertices = polytope.vertices();
@@ -48,23 +49,11 @@ FaceCheck checkFaceExit(const MinkowskiDifference& pair, int face, bool ofA, con
     Vec3 onFace;  // the point of the face (its own polytope's frame) that the exit point is the image of
     if (ofA) {
         // K's facet (face − c_A) + (c_B − v_B), v_B B's support along −n: p + c_A − c_B + v_B on A's face.
-        double lowestValue = INFINITY;
-        const int count = static_cast<int>(pair.b.vertices().size());
-        for (int i = 0; i < count; ++i) {
-            const double value = f.normal.dot(verticesB[i]);
-            if (value < lowestValue) lowestValue = value, check.support = i;
-        }
         onFace = exit + pair.centreA - pair.centreB + verticesB[check.support];
     } else {
         // K's facet (v_A − c_A) + (c_B − face), v_A A's support along −n (n = R·n_B): v_A − c_A + c_B − p
         // on B's face.
-        const Vec3 n = pair.bInA.rotation * f.normal;
-        double lowestValue = INFINITY;
         const std::vector<Vec3>& verticesA = pair.a.vertices();
-        for (int i = 0, count = static_cast<int>(verticesA.size()); i < count; ++i) {
-            const double value = n.dot(verticesA[i]);
-            if (value < lowestValue) lowestValue = value, check.support = i;
-        }
         onFace = pair.bInA.applyInverse(verticesA[check.support] - pair.centreA + pair.centreB - exit);
     }
     const double margin = 1e-9 * size;
@@ -79,15 +68,20 @@ FaceCheck checkFaceExit(const MinkowskiDifference& pair, int face, bool ofA, con
     return check;
 }
 
-// min over the points of n·p, as scalar code with Eigen's order of operations ((n₀p₀ + n₁p₁) + n₂p₂,
-// as n.dot(p)), so the same bits: the face loops below are the enumeration's largest part
-// (callgrind, the 8-vertex hull pair), and Eigen spends packet shuffles on 3-vectors.
-double lowestAlong(const Vec3& n, const Vec3* points, int count) {
+// min over the points of n·p and the first point of that value, as scalar code with Eigen's order
+// of operations ((n₀p₀ + n₁p₁) + n₂p₂, as n.dot(p)), so the same bits: the face loops below are the
+// enumeration's largest part (callgrind, the 8-vertex hull pair), and Eigen spends packet shuffles
+// on 3-vectors.
+struct Lowest {
+    double value;
+    int index;
+};
+Lowest lowestAlong(const Vec3& n, const Vec3* points, int count) {
     const double x = n.x(), y = n.y(), z = n.z();
-    double lowest = INFINITY;
+    Lowest lowest{INFINITY, 0};
     for (int i = 0; i < count; ++i) {
         const double value = (x * points[i].x() + y * points[i].y()) + z * points[i].z();
-        lowest = value < lowest ? value : lowest;  // std::min(lowest, value)
+        if (value < lowest.value) lowest = {value, i};  // the value of std::min(lowest, value)
     }
     return lowest;
 }
@@ -116,7 +110,9 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
     const Mat3& rotation = pair.bInA.rotation;
     const std::vector<Vec3>& verticesA = a.vertices();
     const int countA = static_cast<int>(verticesA.size()), countB = static_cast<int>(b.vertices().size());
-    std::array<Vec3, kMax> verticesB;  // B's vertices in A's frame
+    // B's vertices in A's frame (the carry's, for the features' geometry later).
+    std::array<Vec3, kMax> ownVerticesB;
+    Vec3* verticesB = carry ? carry->verticesB.data() : ownVerticesB.data();
     for (int i = 0; i < countB; ++i) verticesB[i] = pair.vertexB(i);
 
     // The exit so far as the ratio exitAlong/exitSupport = (m·d)/h_K(m) (0/1: none yet), compared by
@@ -190,8 +186,9 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
         return s > marginA && s < 1 - marginA && t > marginB && t < 1 - marginB;
     };
 
-    int bestFace = -1;  // the face whose facet of K is the best so far, and whose it is
+    int bestFace = -1;  // the face whose facet of K is the best so far, whose it is, the other's support
     bool bestFaceOfA = true;
+    int bestSupport = 0;
     auto finish = [&] {
         const double growth = exitAlong / exitSupport;
         result.valid = std::isfinite(growth) && growth > 0 && tiedNormals.norm() > 1e-6;
@@ -226,7 +223,8 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
     // the loops were 0.66 k of the enumeration's 3 k). The others run in the same order as before.
     int firstFace = -1;
     bool firstOfA = true;
-    double firstAlong = 0, firstLowest = 0, threshold = 0;
+    double firstAlong = 0, threshold = 0;
+    Lowest firstLowest{0, 0};
     for (int f = 0; f < faceCountA; ++f)
         if (alongA[f] > firstAlong) firstAlong = alongA[f], firstFace = f;
     for (int f = 0; f < faceCountB; ++f)
@@ -234,12 +232,12 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
     if (firstFace >= 0) {
         double support;
         if (firstOfA) {
-            firstLowest = lowestAlong(facesA[firstFace].normal, verticesB.data(), countB);
-            support = facesA[firstFace].offset - firstLowest + firstAlong;
+            firstLowest = lowestAlong(facesA[firstFace].normal, verticesB, countB);
+            support = facesA[firstFace].offset - firstLowest.value + firstAlong;
         } else {
             const Vec3 n = -gaussB[firstFace];
             firstLowest = lowestAlong(n, verticesA.data(), countA);
-            support = facesB[firstFace].offset + n.dot(pair.bInA.position) - firstLowest + firstAlong;
+            support = facesB[firstFace].offset + n.dot(pair.bInA.position) - firstLowest.value + firstAlong;
         }
         const double radii = a.inradius() + b.inradius() - 1e-12 * size;
         if (support > 0 && radii > 0) threshold = firstAlong / support * radii * (1 - 1e-9);
@@ -249,13 +247,14 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
         const Vec3& n = facesA[f].normal;
         const double along = alongA[f];
         if (!(along > 0) || along < threshold) continue;
-        const double lowestB = firstOfA && f == firstFace ? firstLowest : lowestAlong(n, verticesB.data(), countB);
-        const double overlap = facesA[f].offset - lowestB;  // max n·A − min n·B
+        const Lowest lowestB = firstOfA && f == firstFace ? firstLowest : lowestAlong(n, verticesB, countB);
+        const double overlap = facesA[f].offset - lowestB.value;  // max n·A − min n·B
         if (carry) carry->overlapA[f] = overlap, carry->knownA |= std::uint64_t(1) << f;
         const double before = exitAlong;
         consider(along, overlap + along, n, [&] { return n; });
         if (exitAlong != before)
-            bestFace = f, bestFaceOfA = true, exitFeatureA = {FeatureType::Face, f}, exitFeatureB = {FeatureType::Vertex, -1};
+            bestFace = f, bestFaceOfA = true, bestSupport = lowestB.index, exitFeatureA = {FeatureType::Face, f},
+            exitFeatureB = {FeatureType::Vertex, -1};
     }
     // B's faces, turned into A's frame and negated (the Gauss map of −B): with n = R·n_B,
     // h_K(−n) = (max −n·A + n·c_A) + (offset_B + n·p − n·c_B) = offset_B + n·p − min n·A − n·d.
@@ -263,13 +262,14 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
         const Vec3 n = -gaussB[f];
         const double along = alongB[f];
         if (!(along > 0) || along < threshold) continue;
-        const double lowestA = !firstOfA && f == firstFace ? firstLowest : lowestAlong(n, verticesA.data(), countA);
-        const double overlap = facesB[f].offset + n.dot(pair.bInA.position) - lowestA;  // max −n·A − min −n·B
+        const Lowest lowestA = !firstOfA && f == firstFace ? firstLowest : lowestAlong(n, verticesA.data(), countA);
+        const double overlap = facesB[f].offset + n.dot(pair.bInA.position) - lowestA.value;  // max −n·A − min −n·B
         if (carry) carry->overlapB[f] = overlap, carry->knownB |= std::uint64_t(1) << f;
         const double before = exitAlong;
         consider(along, overlap + along, gaussB[f], [&] { return gaussB[f]; });
         if (exitAlong != before)
-            bestFace = f, bestFaceOfA = false, exitFeatureA = {FeatureType::Vertex, -1}, exitFeatureB = {FeatureType::Face, f};
+            bestFace = f, bestFaceOfA = false, bestSupport = lowestA.index, exitFeatureA = {FeatureType::Vertex, -1},
+            exitFeatureB = {FeatureType::Face, f};
     }
 
     // Where the ray's exit point p = d/σ lies inside the best face's facet of K (face ⊕ the other
@@ -280,7 +280,8 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
     // around the other body's support vertex. If the best of those holds p (a parallelogram), σ is
     // final too; else every edge pair is enumerated below.
     if (bestFace < 0) return finish();
-    const FaceCheck check = checkFaceExit(pair, bestFace, bestFaceOfA, d * (exitSupport / exitAlong), verticesB, size);
+    const FaceCheck check =
+        checkFaceExit(pair, bestFace, bestFaceOfA, d * (exitSupport / exitAlong), verticesB, bestSupport, size);
     (bestFaceOfA ? exitFeatureB : exitFeatureA).index = check.support;  // the face's facet is face ⊕ that vertex
     if (check.inside) return finish();
     const double faceSupport = exitSupport, faceAlong = exitAlong;

@@ -53,6 +53,8 @@ struct HullGaugeCarry {
     // exitFeatureB's.
     bool exitSingle = false;
     Feature exitFeatureA, exitFeatureB;
+    /// B's vertices in A's frame (pair.vertexB(i), bit for bit), as the enumeration placed them.
+    std::array<Vec3, kMaxFaces> verticesB;
 };
 
 /// growthDistance(pair, settings, /*needWitnesses=*/false) by enumeration: the maximum of (m·d)/h_K(m)
