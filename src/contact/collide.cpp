@@ -424,6 +424,10 @@ struct GeneralPairHooks {
     // along the selected faces' normals that refineNormal reads from it (pair.knownOverlaps).
     HullGaugeCarry carry;
     KnownOverlaps known;
+    // featureA's findings for featureB, which decides whether refineNormal reads the carry.
+    double faceOverlapA = NAN;
+    Vec3 directionA = Vec3::Zero();
+    FeatureType manifoldFeatureA = FeatureType::Vertex;
     bool separatingAxis = settings.normalMethod == NormalMethod::SeparatingAxis;
     AngularTolerance angularTolerance{settings.angularTolerance};
     // With each feature its pieces: a face's cap, an edge's chain.
@@ -460,8 +464,7 @@ struct GeneralPairHooks {
                                                  : growthDistance(pair, settings, /*needWitnesses=*/false);
         if (carrying) pair.knownOverlaps = &known;
         stage1.normal = growth.valid ? growth.normal : minimumOverlapFaceNormal(pair);
-        stage1.normalOverlap = growth.valid && carry.exitSingle ? overlapAlongExit(frame, stage1.normal)
-                                                                : pair.overlapAlong(stage1.normal);
+        stage1.normalOverlap = pair.overlapAlong(stage1.normal);
         stage1.growthNormal = growth.valid;
         // A lower bound of every face's overlap, for the overhang check. Any pair has one: along a
         // unit c the overlap is h_{A−c_A}(c) + h_{B−c_B}(−c) − c·d (d = c_B − c_A), and each
@@ -477,33 +480,6 @@ struct GeneralPairHooks {
                 ? std::max(growth.faceOverlapLowerBound, a.inradius() + b.inradius() - frame.centreDistance)
                 : growth.faceOverlapLowerBound;
         return stage1;
-    }
-
-    // pair.overlapAlong(normal) for the growth normal of a single exit facet (carry.exitSingle), bit
-    // for bit, with its support searches (whose vertices stage 2 starts from) made among the facet's
-    // features' vertices: along the facet's normal they are the bodies' supports, and each search
-    // is the brute-force one restricted to them — the first vertex of the largest value, in index
-    // order (a box's is its closed form).
-    double overlapAlongExit(const PairFrame& frame, const Vec3& normal) const {
-        const MinkowskiDifference& pair = frame.pair;
-        auto supportAmong = [](const Polytope& polytope, const Feature& feature, const Vec3& direction) {
-            if (polytope.isBox()) return polytope.supportVertex(direction, 0, -1);
-            int storage[2];
-            const int* indices = nullptr;
-            const int count = featureVertices(polytope, feature, &indices, storage);
-            const std::vector<Vec3>& vertices = polytope.vertices();
-            int best = indices[0];
-            double bestValue = vertices[best].dot(direction);
-            for (int i = 1; i < count; ++i) {
-                const double value = vertices[indices[i]].dot(direction);
-                if (value > bestValue || (value == bestValue && indices[i] < best)) bestValue = value, best = indices[i];
-            }
-            return best;
-        };
-        const Vec3 opposite = -normal;
-        pair.lastSupportA = supportAmong(frame.a, carry.exitFeatureA, normal);
-        pair.lastSupportB = supportAmong(frame.b, carry.exitFeatureB, pair.bInA.rotation.transpose() * opposite);
-        return normal.dot(frame.a.vertices()[pair.lastSupportA]) - normal.dot(pair.vertexB(pair.lastSupportB));
     }
 
     // Stage 2: the Gauss-map search from the support vertex. `first`: the last support searches
@@ -526,23 +502,42 @@ struct GeneralPairHooks {
         return preferNearbyFaceNormal(frame.pair, manifold.featureA, piecesA, manifold.featureB, piecesB,
                                       frame.tolerance, normal, normalOverlap);
     }
-    // The features in A's frame; a selected face whose overlap the enumeration has is known to
-    // refineNormal along its normal exactly as refineNormal spells it (A's planeNormal, B's negated).
-    // A's vertices need no placing (the identity; it differs only in turning −0 into +0), B's were
-    // placed by the enumeration where it carries.
+    // The features in A's frame. A's vertices need no placing (the identity; it differs only in
+    // turning −0 into +0), B's were placed by the enumeration where it carries.
     FeatureGeometry featureA(const PairFrame& frame, const Feature& feature) {
         FeatureGeometry geometry =
             featureGeometry(frame.a, feature, piecesA, Pose{}, carryHullGauge ? frame.a.vertices().data() : nullptr);
-        if (feature.type == FeatureType::Face && (carry.knownA >> feature.index) & 1)
-            known.add(geometry.planeNormal, carry.overlapA[feature.index]);
+        faceOverlapA = carriedFaceOverlap(feature, piecesA, carry.knownA, carry.overlapA);
+        manifoldFeatureA = feature.type;
+        directionA = geometry.planeNormal;
         return geometry;
     }
+    // refineNormal's candidates are the selected faces' normals (A's planeNormal, B's negated, which
+    // is how the known overlaps are spelled) and their caps' pieces. The carried overlaps may differ
+    // from the searches' in the last bits (B's support among vertices tied along the normal, found
+    // in the other frame), so they are used only where that cannot change refineNormal's choice:
+    // no caps, and with two faces the overlaps more than 1e-9 of the size apart (an aligned pair,
+    // whose two faces overlap alike, searches as before).
     FeatureGeometry featureB(const PairFrame& frame, const Feature& feature) {
         FeatureGeometry geometry =
             featureGeometry(frame.b, feature, piecesB, frame.bInA, carry.exitKnown ? carry.verticesB.data() : nullptr);
-        if (feature.type == FeatureType::Face && (carry.knownB >> feature.index) & 1)
-            known.add(-geometry.planeNormal, carry.overlapB[feature.index]);
+        const double faceOverlapB = carriedFaceOverlap(feature, piecesB, carry.knownB, carry.overlapB);
+        const bool faceA = manifoldFeatureA == FeatureType::Face, faceB = feature.type == FeatureType::Face;
+        const bool knownA = !std::isnan(faceOverlapA), knownB = !std::isnan(faceOverlapB);
+        const bool decisive = faceA && faceB ? knownA && knownB && std::abs(faceOverlapA - faceOverlapB) > 1e-9 * frame.size
+                                             : (faceA && knownA) || (faceB && knownB);
+        if (decisive) {
+            if (knownA) known.add(directionA, faceOverlapA);
+            if (knownB) known.add(-geometry.planeNormal, faceOverlapB);
+        }
         return geometry;
+    }
+    // The enumeration's overlap along a selected face's normal: NaN where it has none, the feature
+    // is no face or has a cap (more than one piece).
+    static double carriedFaceOverlap(const Feature& feature, const SmallVector<int, 8>& pieces, std::uint64_t known,
+                                     const std::array<double, HullGaugeCarry::kMaxFaces>& overlaps) {
+        if (feature.type != FeatureType::Face || pieces.size() > 1 || !((known >> feature.index) & 1)) return NAN;
+        return overlaps[feature.index];
     }
     bool refinesNormal() const { return !separatingAxis; }  // SAT's is exact already
 

@@ -119,22 +119,16 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
     // cross-multiplication, with boxGrowth's tie rule: a facet within 1e-12 of the best joins it and
     // the normal is the normalised sum of the tied ones (the middle of their cone).
     // `exitDirection` is the facet's normal as `along` and `supportValue` measure it (for the carry).
-    // `exitFeatureA/B` the features of A and B whose sum the facet is (a vertex index −1 until
-    // known) and `exitTied` whether the normal is a sum of several facets' (for the carry).
     double exitSupport = 1, exitAlong = 0;
     Vec3 tiedNormals = Vec3::Zero(), exitDirection = Vec3::Zero();
-    Feature exitFeatureA, exitFeatureB;
-    bool exitTied = false;
     auto consider = [&](double along, double supportValue, const Vec3& direction, auto&& normal) {
         const double distance = supportValue * exitAlong, exit = exitSupport * along;
         if (distance < exit * (1 - 1e-12)) {
-            exitTied = distance > exit * (1 - 2e-12);
-            if (exitTied) tiedNormals += normal();
+            if (distance > exit * (1 - 2e-12)) tiedNormals += normal();
             else tiedNormals = normal();
             exitSupport = supportValue, exitAlong = along, exitDirection = direction;
         } else if (distance <= exit * (1 + 1e-12)) {
             tiedNormals += normal();
-            exitTied = true;
         }
     };
 
@@ -167,9 +161,7 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
         const double supportB = m.dot(pair.centreB - verticesB[edgeB.tail]);
         const double before = exitAlong;
         consider(along, supportA + supportB, m, [&] { return Vec3(m / std::sqrt(lengthSquared)); });
-        if (exitAlong == before) return false;
-        exitFeatureA = {FeatureType::Edge, indexA}, exitFeatureB = {FeatureType::Edge, indexB};
-        return true;
+        return exitAlong != before;
     };
     // Whether `exit` lies inside the parallelogram facet (edge A − c_A) + (c_B − edge B) of K by more
     // than 1e-9 of the size from its sides: exit − corner = s·e_A − t·e_B with s, t ∈ (0, 1).
@@ -200,8 +192,6 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
             carry->exitKnown = true;
             carry->exitDirection = exitDirection;
             carry->exitOverlap = exitSupport - exitAlong;
-            carry->exitSingle = !exitTied && exitFeatureA.index >= 0 && exitFeatureB.index >= 0;
-            carry->exitFeatureA = exitFeatureA, carry->exitFeatureB = exitFeatureB;
         }
         return result;
     };
@@ -252,9 +242,7 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
         if (carry) carry->overlapA[f] = overlap, carry->knownA |= std::uint64_t(1) << f;
         const double before = exitAlong;
         consider(along, overlap + along, n, [&] { return n; });
-        if (exitAlong != before)
-            bestFace = f, bestFaceOfA = true, bestSupport = lowestB.index, exitFeatureA = {FeatureType::Face, f},
-            exitFeatureB = {FeatureType::Vertex, -1};
+        if (exitAlong != before) bestFace = f, bestFaceOfA = true, bestSupport = lowestB.index;
     }
     // B's faces, turned into A's frame and negated (the Gauss map of −B): with n = R·n_B,
     // h_K(−n) = (max −n·A + n·c_A) + (offset_B + n·p − n·c_B) = offset_B + n·p − min n·A − n·d.
@@ -267,9 +255,7 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
         if (carry) carry->overlapB[f] = overlap, carry->knownB |= std::uint64_t(1) << f;
         const double before = exitAlong;
         consider(along, overlap + along, gaussB[f], [&] { return gaussB[f]; });
-        if (exitAlong != before)
-            bestFace = f, bestFaceOfA = false, bestSupport = lowestA.index, exitFeatureA = {FeatureType::Vertex, -1},
-            exitFeatureB = {FeatureType::Face, f};
+        if (exitAlong != before) bestFace = f, bestFaceOfA = false, bestSupport = lowestA.index;
     }
 
     // Where the ray's exit point p = d/σ lies inside the best face's facet of K (face ⊕ the other
@@ -282,12 +268,9 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
     if (bestFace < 0) return finish();
     const FaceCheck check =
         checkFaceExit(pair, bestFace, bestFaceOfA, d * (exitSupport / exitAlong), verticesB, bestSupport, size);
-    (bestFaceOfA ? exitFeatureB : exitFeatureA).index = check.support;  // the face's facet is face ⊕ that vertex
     if (check.inside) return finish();
     const double faceSupport = exitSupport, faceAlong = exitAlong;
     const Vec3 faceNormals = tiedNormals, faceDirection = exitDirection;
-    const Feature faceFeatureA = exitFeatureA, faceFeatureB = exitFeatureB;
-    const bool faceTied = exitTied;
     {
         const Polytope& faceOwner = bestFaceOfA ? a : b;
         const Polytope& other = bestFaceOfA ? b : a;
@@ -311,7 +294,6 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
     }
     // Back to the faces' answer: every edge pair follows, the ones just tried among them.
     exitSupport = faceSupport, exitAlong = faceAlong, tiedNormals = faceNormals, exitDirection = faceDirection;
-    exitFeatureA = faceFeatureA, exitFeatureB = faceFeatureB, exitTied = faceTied;
     // Edge pairs. The edges that can carry an exit facet (a face normal with n·d > 0), each with its
     // direction, a point, its arc's end normals and their cross product.
     struct ArcEdge {
@@ -376,10 +358,7 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
             const double along = m.dot(d);
             if (!(along > 0)) continue;
             const double supportB = m.dot(pointOffsetB - edgeB.point);
-            const double before = exitAlong;
             consider(along, supportA + supportB, m, [&] { return Vec3(m / std::sqrt(lengthSquared)); });
-            if (exitAlong != before)
-                exitFeatureA = {FeatureType::Edge, edgeA.index}, exitFeatureB = {FeatureType::Edge, edgeB.index};
         }
     }
     return finish();

@@ -7,8 +7,6 @@
 #include "geometry/growth_distance.hpp"
 #include "geometry/minkowski.hpp"
 
-#include <gdcontact/manifold.hpp>
-
 #include <array>
 #include <cstdint>
 
@@ -47,12 +45,6 @@ struct HullGaugeCarry {
     bool exitKnown = false;
     Vec3 exitDirection = Vec3::Zero();  // the exit facet's normal, A towards B, not normalised
     double exitOverlap = 0;             // the pair's overlap along exitDirection (in its length's units)
-    // The features of A and B whose sum the exit facet is (a face and the other body's vertex, or
-    // two edges); exitSingle: the growth normal is that one facet's (not a sum of tied ones), so
-    // A's support along it is among exitFeatureA's vertices and B's along its opposite among
-    // exitFeatureB's.
-    bool exitSingle = false;
-    Feature exitFeatureA, exitFeatureB;
     /// B's vertices in A's frame (pair.vertexB(i), bit for bit), as the enumeration placed them.
     std::array<Vec3, kMaxFaces> verticesB;
 };
