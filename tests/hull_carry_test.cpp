@@ -8,6 +8,7 @@
 // features, points in the same order), with normal, depths and points within 1e-12 of the pair's
 // size; the largest difference is printed.
 #include "contact/collide_general.hpp"
+#include "geometry/minkowski.hpp"
 #include "geometry/hull_gauge.hpp"
 #include "sanitizer_scale.hpp"
 #include "touching_poses.hpp"
@@ -85,6 +86,51 @@ TEST_CASE("hull carry: faces of A and B exactly parallel (10^5 poses per pair ty
     compareAligned("8-vertex hull pair, aligned", hulls.cubeHull, hulls.cubeHull, 21);
     compareAligned("cube hull on plank hull, aligned", hulls.cubeHull, hulls.plankHull, 22);
     compareAligned("box and cube hull, aligned", hulls.box, hulls.cubeHull, 23);
+}
+
+// The early out's inradius bound (collide.cpp, separatedByEarlyOut) decides as the two support
+// searches along the line of centres that it spares: on 10^5 poses per pair type, overlapping,
+// touching and apart by up to 20 % of the size, with and without a margin.
+int compareEarlyOut(const char* name, const Polytope& a, const Polytope& b, std::uint32_t seed) {
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    int separated = 0, spared = 0;
+    for (int i = 0; i < kPoses; ++i) {
+        auto [poseA, poseB] = randomTouchingPoses(random, a, b, i % 2 == 0, 0.03);
+        const double size = a.radius() + b.radius();
+        const Vec3 apart = poseB.position - poseA.position;
+        if (i % 3 == 0 && apart.norm() > 0) poseB.position += apart.normalized() * (0.2 * unit(random) * size);
+        const double margin = i % 5 == 0 ? 0.01 * size : 0.0;
+        const double tolerance = 1e-9 * size;
+        const Pose bInA = poseA.relative(poseB);
+        const detail::MinkowskiDifference pair(a, b, bInA, Settings{}.bruteForceSupportLimit);
+        const Vec3 offset = pair.centreB - pair.centreA;
+        const double distance = offset.norm();
+        // The replaced test, written out.
+        const bool searched =
+            distance > size + margin || (distance > 0 && pair.overlapAlong(offset / distance) < -margin - tolerance);
+        const bool bounded = detail::separatedByEarlyOut(pair, offset, distance, size, margin, tolerance);
+        INFO(name << " pose " << i);
+        REQUIRE(bounded == searched);
+        separated += searched;
+        spared += a.inradius() + b.inradius() - distance >= -margin;
+    }
+    std::printf("early out by the inradius bound, %s: %d poses, %d separated, the searches spared on %d\n", name,
+                kPoses, separated, spared);
+    CHECK(separated > kPoses / 100);  // the poses exercise both answers
+    return spared;
+}
+
+TEST_CASE("hull carry: the early out's inradius bound decides as the centre line's searches (10^5 poses per pair type)") {
+    std::mt19937 random(23);
+    const ProvingHulls hulls(random);
+    // A resting cube pair is what the bound is for (r_A + r_B − |d| is the penetration there).
+    CHECK(compareEarlyOut("8-vertex hull pair", hulls.cubeHull, hulls.cubeHull, 31) > kPoses / 10);
+    CHECK(compareEarlyOut("cube hull and plank hull", hulls.cubeHull, hulls.plankHull, 32) > kPoses / 10);
+    compareEarlyOut("box and cube hull", hulls.box, hulls.cubeHull, 33);
+    compareEarlyOut("box pair", hulls.box, hulls.box, 34);
+    compareEarlyOut("random hulls (24 and 10 points)", hulls.rock, hulls.pebble, 35);
+    compareEarlyOut("large hull (300 points) and box", hulls.boulder, hulls.box, 36);
 }
 
 TEST_CASE("hull carry: the proving pairs reach the enumeration") {
