@@ -18,8 +18,9 @@ namespace gdc::detail {
 /// overlaps (the bodies' inradii about their centroids, collide.cpp) shows cannot change the answer:
 /// the path the bounds replaced, kept so that a test can prove the two equal. `carryHullGauge` false
 /// makes the later stages search again for what the hull enumeration found on its way (the overlaps
-/// along the selected faces' normals, the exit facet as the depth certificate; hull_gauge.hpp's
-/// HullGaugeCarry): the path the carry replaced, kept so that a test can prove the two equal.
+/// along the selected faces' normals, the exit facet as the depth certificate, B's vertices placed
+/// in A's frame; hull_gauge.hpp's HullGaugeCarry) and place A's feature by its identity pose: the
+/// path the carry replaced, kept so that a test can prove the two equal.
 Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
                         const Settings& settings, bool alwaysConfirmDepth = false, bool enumerateSmallHulls = true,
                         bool boundFaceOverlaps = true, bool carryHullGauge = true);
