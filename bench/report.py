@@ -94,16 +94,14 @@ STANDS_IN_THE_WAY = {
                  "(160): the midway points and the ranking are the method's, which ODE does not compute.",
     "convex_plane": "As box–plane; for a hull the Gauss-map selection (selectFeature, about 450 instructions: 3 neighbour-edge and 9 face tests for a cube) "
                     "replaces the box's closed form.",
-    "hull8_libccd": "libccd's MPR returns one point. Of the full manifold's 15 k (core): the ranking of 8 points "
-                    "3.9 k, the clip 2.4 k, the growth distance by enumerating A − B's facets (hullGrowth) 2.85 k, "
-                    "the depth certificate (penetrationCertified) 1.4 k, feature selection 1.1 k, refineNormal's "
-                    "support searches 0.9 k: the stages other than ranking and clip come to about 8.5 k, above "
-                    "libccd's whole call. Carrying what hullGrowth found (the exit facet's features, the overlaps "
-                    "along face normals) into the later stages would cut repeated support searches but reorders "
-                    "the arithmetic, so the answer would be equal only within rounding.",
-    "hull8_bullet_sat": "Instructions are now below Bullet's (0.96×), time is not: Bullet's SAT over a cube's "
-                        "3 + 3 face and 9 edge directions plus its clipping does the work of our stages 1 and 3 "
-                        "only; the ranking and the depth certificate (about a third of the call) are ours alone.",
+    "hull8_libccd": "libccd's MPR returns one point. Of the full manifold's 11.9 k (core): the ranking of 8 points "
+                    "3.3 k, the clip 2.2 k, the growth distance by enumerating A − B's facets (hullGrowth) 2.55 k, "
+                    "feature selection 1.1 k, the features' geometry 0.6 k, stage 1's support searches 0.3 k. "
+                    "What hullGrowth finds (the overlaps along the faces it evaluated, its exit facet, B's placed "
+                    "vertices) is carried into refineNormal, the depth certificate and the features, which no "
+                    "longer search again (the same manifolds: `core_tests \"hull carry*\"`).",
+    "hull8_bullet_sat": "Bullet's SAT over a cube's 3 + 3 face and 9 edge directions plus its clipping does the work "
+                        "of our stages 1 and 3 only; the ranking (about a quarter of the call) is ours alone.",
     "hull_growth": "Through the adapter each 4096-vertex call now includes ODE's AABB update of the re-posed geom "
                    "(dxConvex::computeAABB, about 0.4 M instructions: a loop over every vertex, which a real step's "
                    "broad phase pays for every collider alike, and which the adapter's dGeomSetConvex check reads); "

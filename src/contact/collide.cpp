@@ -48,9 +48,15 @@ Vec3 minimumOverlapFaceNormal(const MinkowskiDifference& pair) {
 // The pair's overlap along `direction`, reusing `normalOverlap` (the overlap along `normal`, which
 // the caller already has) when the direction is the normal itself: the face the normal came from
 // is usually among the candidates of each later step. overlapAlong is a deterministic function of
-// the direction's value, so the reused number is the one it would compute.
+// the direction's value, so the reused number is the one it would compute. Likewise an overlap an
+// earlier stage already knows along exactly this direction (pair.knownOverlaps: the hull
+// enumeration's, along the selected faces' normals), equal to the search's within rounding.
 double overlapAlong(const MinkowskiDifference& pair, const Vec3& direction, const Vec3& normal, double normalOverlap) {
-    return direction == normal ? normalOverlap : pair.overlapAlong(direction);
+    if (direction == normal) return normalOverlap;
+    if (const KnownOverlaps* known = pair.knownOverlaps)
+        for (int i = 0; i < known->count; ++i)
+            if (direction == known->directions[i]) return known->overlaps[i];
+    return pair.overlapAlong(direction);
 }
 
 
@@ -145,23 +151,33 @@ bool preferNearbyFaceNormal(const MinkowskiDifference& pair, const Feature& feat
     return true;
 }
 
-FeatureGeometry faceGeometry(const Polytope& polytope, int index, const Pose& toCommon) {
+// The feature geometries below place the polytope's vertices in the common frame by `toCommon`,
+// unless `common` has them there already (bit for bit: A's own where toCommon is the identity, and
+// then its planes too; B's as the hull enumeration placed them, hull_gauge.hpp).
+FeatureGeometry faceGeometry(const Polytope& polytope, int index, const Pose& toCommon, const Vec3* common) {
     FeatureGeometry geometry;
     geometry.type = FeatureType::Face;
     const Polytope::Face& face = polytope.faces()[index];
-    for (int i = 0; i < face.count; ++i)
-        geometry.points.push_back(toCommon.apply(polytope.vertices()[polytope.faceVertices()[face.first + i]]));
-    geometry.planeNormal = toCommon.rotation * face.normal;
-    geometry.planeOffset = face.offset + geometry.planeNormal.dot(toCommon.position);
+    for (int i = 0; i < face.count; ++i) {
+        const int vertex = polytope.faceVertices()[face.first + i];
+        geometry.points.push_back(common ? common[vertex] : toCommon.apply(polytope.vertices()[vertex]));
+    }
+    if (common == polytope.vertices().data()) {  // the identity: what the product would give
+        geometry.planeNormal = face.normal;
+        geometry.planeOffset = face.offset;
+    } else {
+        geometry.planeNormal = toCommon.rotation * face.normal;
+        geometry.planeOffset = face.offset + geometry.planeNormal.dot(toCommon.position);
+    }
     return geometry;
 }
 
-FeatureGeometry edgeGeometry(const Polytope& polytope, int index, const Pose& toCommon) {
+FeatureGeometry edgeGeometry(const Polytope& polytope, int index, const Pose& toCommon, const Vec3* common) {
     FeatureGeometry geometry;
     geometry.type = FeatureType::Edge;
     const Polytope::Edge& edge = polytope.edges()[index];
-    geometry.points.push_back(toCommon.apply(polytope.vertices()[edge.tail]));
-    geometry.points.push_back(toCommon.apply(polytope.vertices()[edge.head]));
+    geometry.points.push_back(common ? common[edge.tail] : toCommon.apply(polytope.vertices()[edge.tail]));
+    geometry.points.push_back(common ? common[edge.head] : toCommon.apply(polytope.vertices()[edge.head]));
     return geometry;
 }
 
@@ -178,20 +194,20 @@ void featurePieces(const Polytope& polytope, const Feature& feature, const Vec3&
 // The feature in the common frame; with more than one piece (featurePieces) each is a feature of
 // its own in `capFaces`, intersected one by one.
 FeatureGeometry featureGeometry(const Polytope& polytope, const Feature& feature, const SmallVector<int, 8>& pieces,
-                                const Pose& toCommon) {
+                                const Pose& toCommon, const Vec3* common = nullptr) {
     if (feature.type == FeatureType::Face || feature.type == FeatureType::Edge) {
         // A face's cap or an edge's chain: the same pieces of the one kind.
         auto pieceGeometry = feature.type == FeatureType::Face ? faceGeometry : edgeGeometry;
-        FeatureGeometry geometry = pieceGeometry(polytope, feature.index, toCommon);
+        FeatureGeometry geometry = pieceGeometry(polytope, feature.index, toCommon, common);
         if (pieces.size() > 1) {
             geometry.capFaces.reserve(pieces.size());
-            for (int piece : pieces) geometry.capFaces.push_back(pieceGeometry(polytope, piece, toCommon));
+            for (int piece : pieces) geometry.capFaces.push_back(pieceGeometry(polytope, piece, toCommon, common));
         }
         return geometry;
     }
     FeatureGeometry geometry;
     geometry.type = feature.type;
-    geometry.points.push_back(toCommon.apply(polytope.vertices()[feature.index]));
+    geometry.points.push_back(common ? common[feature.index] : toCommon.apply(polytope.vertices()[feature.index]));
     return geometry;
 }
 
@@ -282,7 +298,22 @@ bool separatedByEarlyOut(const MinkowskiDifference& pair, const Vec3& centreOffs
     if (centreDistance > size + margin) return true;
     // The line of centres is the likeliest separating axis of a pair whose spheres overlap: two
     // support searches settle most separated pairs of a broad phase before the ray cast.
-    return centreDistance > 0 && pair.overlapAlong(centreOffset / centreDistance) < -margin - tolerance;
+    if (!(centreDistance > 0)) return false;
+    // Each body's support value about its centroid is at least its inradius, so the overlap along
+    // the line of centres is at least r_A + r_B − |d|: where that is not below −margin, the searches
+    // cannot find the pair apart by more than the margin and the tolerance (the bound's rounding is
+    // far below the tolerance), and a resting pair (two stacked cubes: 1 − 0.99) spares them.
+    // Only where the searches keep no state (a box's closed form, brute force): a hill climb's
+    // later searches start from their vertices.
+    const Polytope& a = pair.a;
+    const Polytope& b = pair.b;
+    if (a.inradius() + b.inradius() - centreDistance >= -margin) {
+        const bool searchesWithoutState =
+            (a.isBox() || static_cast<int>(a.vertices().size()) <= pair.bruteForceLimit) &&
+            (b.isBox() || static_cast<int>(b.vertices().size()) <= pair.bruteForceLimit);
+        if (searchesWithoutState) return false;
+    }
+    return pair.overlapAlong(centreOffset / centreDistance) < -margin - tolerance;
 }
 
 bool edgeEdgeNormal(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, const MinkowskiDifference& pair,
@@ -397,15 +428,26 @@ namespace {
 // ones replaced, kept so that tests can prove the two equal (collide_general.hpp).
 struct GeneralPairHooks {
     static constexpr bool kDelegatesRareCases = false;  // it is where the others delegate to
-    GeneralPairHooks(const Settings& settings, bool alwaysConfirmDepth, bool enumerateSmallHulls, bool boundFaceOverlaps)
+    GeneralPairHooks(const Settings& settings, bool alwaysConfirmDepth, bool enumerateSmallHulls, bool boundFaceOverlaps,
+                     bool carryHullGauge)
         : settings(settings),
           alwaysConfirmDepth(alwaysConfirmDepth),
           enumerateSmallHulls(enumerateSmallHulls),
-          boundFaceOverlaps(boundFaceOverlaps) {}
+          boundFaceOverlaps(boundFaceOverlaps),
+          carryHullGauge(carryHullGauge) {}
     const Settings& settings;
     bool alwaysConfirmDepth;
     bool enumerateSmallHulls;
     bool boundFaceOverlaps;
+    bool carryHullGauge;
+    // What the hull enumeration found (empty unless it ran with carryHullGauge), and the overlaps
+    // along the selected faces' normals that refineNormal reads from it (pair.knownOverlaps).
+    HullGaugeCarry carry;
+    KnownOverlaps known;
+    // featureA's findings for featureB, which decides whether refineNormal reads the carry.
+    double faceOverlapA = NAN;
+    Vec3 directionA = Vec3::Zero();
+    FeatureType manifoldFeatureA = FeatureType::Vertex;
     bool separatingAxis = settings.normalMethod == NormalMethod::SeparatingAxis;
     AngularTolerance angularTolerance{settings.angularTolerance};
     // With each feature its pieces: a face's cap, an edge's chain.
@@ -418,7 +460,7 @@ struct GeneralPairHooks {
     }
 
     // Stage 1: contact normal from the growth distance (or, to measure the trade, the SAT's).
-    Stage1 growthNormal(const PairFrame& frame, const Vec3&) const {
+    Stage1 growthNormal(const PairFrame& frame, const Vec3&) {
         const MinkowskiDifference& pair = frame.pair;
         Stage1 stage1;
         if (separatingAxis) {
@@ -426,11 +468,21 @@ struct GeneralPairHooks {
             stage1.normal = axis.normal, stage1.normalOverlap = axis.overlap;
             return stage1;  // no overhang check: no face overlaps less than the SAT's normal
         }
+        const Polytope& a = frame.a;
+        const Polytope& b = frame.b;
+        const bool searchesWithoutState =
+            (a.isBox() || static_cast<int>(a.vertices().size()) <= pair.bruteForceLimit) &&
+            (b.isBox() || static_cast<int>(b.vertices().size()) <= pair.bruteForceLimit);
         // The hull's hook: two small polytopes enumerate K's facets (hull_gauge.hpp), the same σ and
-        // facet the ray cast converges to; large ones (and two boxes, in closed form) cast.
-        const GrowthDistance growth = enumerateSmallHulls && hullGaugeApplies(frame.a, frame.b)
-                                          ? hullGrowth(pair)
-                                          : growthDistance(pair, settings, /*needWitnesses=*/false);
+        // facet the ray cast converges to; large ones (and two boxes, in closed form) cast. What the
+        // enumeration evaluated on the way is carried to the later stages (refineNormal's overlaps,
+        // the depth certificate) where no search keeps state: a skipped search of a hill climb
+        // would move the later climbs' starting vertices, and with them the ray cast's answer.
+        const bool enumerates = enumerateSmallHulls && hullGaugeApplies(a, b);
+        const bool carrying = enumerates && carryHullGauge && searchesWithoutState;
+        const GrowthDistance growth = enumerates ? hullGrowth(pair, carrying ? &carry : nullptr)
+                                                 : growthDistance(pair, settings, /*needWitnesses=*/false);
+        if (carrying) pair.knownOverlaps = &known;
         stage1.normal = growth.valid ? growth.normal : minimumOverlapFaceNormal(pair);
         stage1.normalOverlap = pair.overlapAlong(stage1.normal);
         stage1.growthNormal = growth.valid;
@@ -443,11 +495,6 @@ struct GeneralPairHooks {
         // warm start (boxes, brute force): the check's searches move the hill climb's starting
         // vertices, and a climb from elsewhere may stop at another vertex of a face the direction
         // is normal to, which changes later values by a rounding.
-        const Polytope& a = frame.a;
-        const Polytope& b = frame.b;
-        const bool searchesWithoutState =
-            (a.isBox() || static_cast<int>(a.vertices().size()) <= pair.bruteForceLimit) &&
-            (b.isBox() || static_cast<int>(b.vertices().size()) <= pair.bruteForceLimit);
         stage1.faceOverlapLowerBound =
             boundFaceOverlaps && searchesWithoutState
                 ? std::max(growth.faceOverlapLowerBound, a.inradius() + b.inradius() - frame.centreDistance)
@@ -475,11 +522,42 @@ struct GeneralPairHooks {
         return preferNearbyFaceNormal(frame.pair, manifold.featureA, piecesA, manifold.featureB, piecesB,
                                       frame.tolerance, normal, normalOverlap);
     }
-    FeatureGeometry featureA(const PairFrame& frame, const Feature& feature) const {
-        return featureGeometry(frame.a, feature, piecesA, Pose{});
+    // The features in A's frame. A's vertices need no placing (the identity; it differs only in
+    // turning −0 into +0), B's were placed by the enumeration where it carries.
+    FeatureGeometry featureA(const PairFrame& frame, const Feature& feature) {
+        FeatureGeometry geometry =
+            featureGeometry(frame.a, feature, piecesA, Pose{}, carryHullGauge ? frame.a.vertices().data() : nullptr);
+        faceOverlapA = carriedFaceOverlap(feature, piecesA, carry.knownA, carry.overlapA);
+        manifoldFeatureA = feature.type;
+        directionA = geometry.planeNormal;
+        return geometry;
     }
-    FeatureGeometry featureB(const PairFrame& frame, const Feature& feature) const {
-        return featureGeometry(frame.b, feature, piecesB, frame.bInA);
+    // refineNormal's candidates are the selected faces' normals (A's planeNormal, B's negated, which
+    // is how the known overlaps are spelled) and their caps' pieces. The carried overlaps may differ
+    // from the searches' in the last bits (B's support among vertices tied along the normal, found
+    // in the other frame), so they are used only where that cannot change refineNormal's choice:
+    // no caps, and with two faces the overlaps more than 1e-9 of the size apart (an aligned pair,
+    // whose two faces overlap alike, searches as before).
+    FeatureGeometry featureB(const PairFrame& frame, const Feature& feature) {
+        FeatureGeometry geometry =
+            featureGeometry(frame.b, feature, piecesB, frame.bInA, carry.exitKnown ? carry.verticesB.data() : nullptr);
+        const double faceOverlapB = carriedFaceOverlap(feature, piecesB, carry.knownB, carry.overlapB);
+        const bool faceA = manifoldFeatureA == FeatureType::Face, faceB = feature.type == FeatureType::Face;
+        const bool knownA = !std::isnan(faceOverlapA), knownB = !std::isnan(faceOverlapB);
+        const bool decisive = faceA && faceB ? knownA && knownB && std::abs(faceOverlapA - faceOverlapB) > 1e-9 * frame.size
+                                             : (faceA && knownA) || (faceB && knownB);
+        if (decisive) {
+            if (knownA) known.add(directionA, faceOverlapA);
+            if (knownB) known.add(-geometry.planeNormal, faceOverlapB);
+        }
+        return geometry;
+    }
+    // The enumeration's overlap along a selected face's normal: NaN where it has none, the feature
+    // is no face or has a cap (more than one piece).
+    static double carriedFaceOverlap(const Feature& feature, const SmallVector<int, 8>& pieces, std::uint64_t known,
+                                     const std::array<double, HullGaugeCarry::kMaxFaces>& overlaps) {
+        if (feature.type != FeatureType::Face || pieces.size() > 1 || !((known >> feature.index) & 1)) return NAN;
+        return overlaps[feature.index];
     }
     bool refinesNormal() const { return !separatingAxis; }  // SAT's is exact already
 
@@ -504,6 +582,16 @@ struct GeneralPairHooks {
         // The ray cast converges to within its tolerance of the exit: the certificate keeps that much
         // on the safe side, so that it skips the cast only where the cast could not have added a point.
         const double certifiedSlack = slack - 2 * settings.rayCastTolerance * frame.size;
+        // The exit facet of the enumeration first: a plane of A − B, so it bounds the penetration
+        // along n like penetrationCertified's candidates (t* ≤ overlap(m)/(m·n) for m·n > 0), and for
+        // a resting pair it is mostly the facet the line along n leaves by too (the centre line and
+        // n nearly agree): the certificate without projecting the features or searching a support.
+        if (!alwaysConfirmDepth && deepestPoint && carry.exitKnown) {
+            const Vec3& m = carry.exitDirection;
+            const double along = m.dot(normal);
+            if (along > 1e-6 * m.norm() && carry.exitOverlap / along <= deepestPoint->depth + certifiedSlack)
+                return DepthCheck::Confirmed;
+        }
         if (!alwaysConfirmDepth && deepestPoint &&
             penetrationCertified(*deepestPoint, featureA, featureB, normal, frame.pair, certifiedSlack,
                                  frame.tolerance))
@@ -525,9 +613,9 @@ struct GeneralPairHooks {
 
 Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
                         const Settings& settings, bool alwaysConfirmDepth, bool enumerateSmallHulls,
-                        bool boundFaceOverlaps) {
+                        bool boundFaceOverlaps, bool carryHullGauge) {
     Manifold manifold;
-    GeneralPairHooks hooks(settings, alwaysConfirmDepth, enumerateSmallHulls, boundFaceOverlaps);
+    GeneralPairHooks hooks(settings, alwaysConfirmDepth, enumerateSmallHulls, boundFaceOverlaps, carryHullGauge);
     composeStages(hooks, a, poseA, b, poseB, settings, manifold);  // never delegates
     return manifold;
 }

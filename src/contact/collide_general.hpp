@@ -16,10 +16,14 @@ namespace gdc::detail {
 /// cast even where the hull hook's enumeration applies (hull_gauge.hpp): what the test of the two
 /// compares against. `boundFaceOverlaps` false runs every check that a lower bound on the pair's
 /// overlaps (the bodies' inradii about their centroids, collide.cpp) shows cannot change the answer:
-/// the path the bounds replaced, kept so that a test can prove the two equal.
+/// the path the bounds replaced, kept so that a test can prove the two equal. `carryHullGauge` false
+/// makes the later stages search again for what the hull enumeration found on its way (the overlaps
+/// along the selected faces' normals, the exit facet as the depth certificate, B's vertices placed
+/// in A's frame; hull_gauge.hpp's HullGaugeCarry) and place A's feature by its identity pose: the
+/// path the carry replaced, kept so that a test can prove the two equal.
 Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
                         const Settings& settings, bool alwaysConfirmDepth = false, bool enumerateSmallHulls = true,
-                        bool boundFaceOverlaps = true);
+                        bool boundFaceOverlaps = true, bool carryHullGauge = true);
 /// Gauss-map feature of A lifted onto the half-space, for any polytope (half_space.cpp: the
 /// half-space query with the general shape hooks).
 Manifold collideGeneral(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings);

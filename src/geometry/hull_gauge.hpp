@@ -7,6 +7,9 @@
 #include "geometry/growth_distance.hpp"
 #include "geometry/minkowski.hpp"
 
+#include <array>
+#include <cstdint>
+
 namespace gdc::detail {
 
 /// Largest edge count of each polytope for which the enumeration runs (its tables are fixed arrays,
@@ -28,12 +31,31 @@ inline bool hullGaugeApplies(const Polytope& a, const Polytope& b) {
            !(a.isBox() && b.isBox());
 }
 
+/// What hullGrowth found on its way that the later stages of the same query would search for again
+/// (collide.cpp, GeneralPairHooks): the pair's overlap along each face normal it evaluated (A's face
+/// normals n, B's turned into A's frame and negated, −R·n_B, both pointing from A towards B), and the
+/// exit facet of K — a plane of A − B whose overlap bounds the penetration along any direction, the
+/// depth certificate's candidate. An overlap is max m·A − min m·B from the same support values the
+/// enumeration compared (a face's plane offset for its own body): equal to the support searches'
+/// within rounding, not bit for bit.
+struct HullGaugeCarry {
+    static constexpr int kMaxFaces = 64;  // 2E/3 + 2 for E ≤ kHullGaugeMaxEdges
+    std::uint64_t knownA = 0, knownB = 0;  // bit f: overlapA[f] / overlapB[f] was written
+    std::array<double, kMaxFaces> overlapA, overlapB;
+    bool exitKnown = false;
+    Vec3 exitDirection = Vec3::Zero();  // the exit facet's normal, A towards B, not normalised
+    double exitOverlap = 0;             // the pair's overlap along exitDirection (in its length's units)
+    /// B's vertices in A's frame (pair.vertexB(i), bit for bit), as the enumeration placed them.
+    std::array<Vec3, kMaxFaces> verticesB;
+};
+
 /// growthDistance(pair, settings, /*needWitnesses=*/false) by enumeration: the maximum of (m·d)/h_K(m)
 /// over the facet normals m of K = (A − c_A) − (B − c_B) — A's face normals, B's face normals negated
 /// and the cross products of the edge pairs whose arcs cross on the Gauss maps of A and −B — at
 /// d = c_B − c_A. Valid, the normal (unit, A towards B; the normalised sum of the facets tied within
 /// 1e-12, the middle of the cone a ray through an edge of K leaves by, as boxGrowth) and the growth;
 /// no witnesses, no face-overlap bound (as the ray cast's answer).
-GrowthDistance hullGrowth(const MinkowskiDifference& pair);
+/// With `carry`, also what the enumeration found on the way (HullGaugeCarry); the answer is the same.
+GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry = nullptr);
 
 }  // namespace gdc::detail

@@ -6,6 +6,20 @@
 
 namespace gdc::detail {
 
+/// Overlaps of the pair that an earlier stage of the query already has, each along a direction as
+/// the later stage will spell it (compared bit for bit): collide.cpp's refineNormal reads them
+/// instead of searching the supports again (the general hooks fill them from the hull
+/// enumeration, hull_gauge.hpp's HullGaugeCarry).
+struct KnownOverlaps {
+    static constexpr int kCapacity = 2;
+    int count = 0;
+    Vec3 directions[kCapacity];
+    double overlaps[kCapacity];
+    void add(const Vec3& direction, double overlap) {
+        if (count < kCapacity) directions[count] = direction, overlaps[count++] = overlap;
+    }
+};
+
 struct MinkowskiDifference {
     const Polytope& a;
     const Polytope& b;
@@ -23,6 +37,8 @@ struct MinkowskiDifference {
     // previous answer. A local object per query: no state is shared between queries.
     mutable int lastSupportA = -1;
     mutable int lastSupportB = -1;
+    /// Overlaps an earlier stage knows (nullptr: none), owned by the query's hooks.
+    mutable const KnownOverlaps* knownOverlaps = nullptr;
 
     int supportA(const Vec3& direction) const {
         return lastSupportA = a.supportVertex(direction, bruteForceLimit, lastSupportA);
