@@ -32,6 +32,7 @@ struct OnPlaneHooks {
     static bool preferNearbyFace(const HalfSpaceFrame&, Vec3&, double&, const Manifold&) { return false; }
     static Feature planeFeature() { return {FeatureType::Face, 0}; }
     int deepest = 0;  // A's support along −m (stage 1), where stage 2's feature search starts
+    static constexpr ImportanceOrder kOrder = ImportanceOrder::Full;  // what stage 3 ranks (half_space.hpp)
 };
 
 // A box: the closed-form support and Gauss-map feature (box_shape.hpp); a box's face is its whole
@@ -122,15 +123,25 @@ struct AnyPolytopeOnPlaneHooks : OnPlaneHooks {
 // both cost what they cost before the hooks (bench/callgrind_counts.py … box_plane/face
 // convex_plane/face hull_plane/8). The box's inlined into a dispatcher that called the hull's cost
 // a box–plane query 0.8 % and a hull–plane query 2 % more; both inlined there, the box's 1.7 %.
+// A shape's hooks asking stage 3 for the points in `order` (a template argument: the ranking's
+// test is compiled out of the Full path, which stays the instructions it was).
+template <class Hooks, ImportanceOrder order>
+struct Ordered : Hooks {
+    using Hooks::Hooks;
+    static constexpr ImportanceOrder kOrder = order;
+};
+
+template <ImportanceOrder order>
 [[gnu::noinline]] void collideBox(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b, const Settings& settings,
                                   Manifold& manifold) {
-    BoxOnPlaneHooks hooks(settings);
+    Ordered<BoxOnPlaneHooks, order> hooks(settings);
     composeStages(hooks, halfSpaceFrame(a, poseA, b), poseA, settings, manifold);
 }
 
+template <ImportanceOrder order>
 [[gnu::noinline]] void collideSmallHull(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b,
                                         const Settings& settings, const AngularTolerance* given, Manifold& manifold) {
-    SmallHullOnPlaneHooks hooks(settings, given);
+    Ordered<SmallHullOnPlaneHooks, order> hooks(settings, given);
     composeStages(hooks, halfSpaceFrame(a, poseA, b), poseA, settings, manifold);
 }
 
@@ -171,10 +182,12 @@ UnitHalfSpace normaliseHalfSpace(const HalfSpace& b) { return normalised(b); }
 namespace {
 
 // The entry points below, once A's pose is known finite.
+template <ImportanceOrder order = ImportanceOrder::Full>
 [[gnu::always_inline]] inline void collideNormalised(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b,
                                                      const Settings& settings, const AngularTolerance* angularTolerance,
                                                      Manifold& out) {
-    a.isBox() ? collideBox(a, poseA, b, settings, out) : collideSmallHull(a, poseA, b, settings, angularTolerance, out);
+    a.isBox() ? collideBox<order>(a, poseA, b, settings, out)
+              : collideSmallHull<order>(a, poseA, b, settings, angularTolerance, out);
 }
 
 }  // namespace
@@ -196,6 +209,26 @@ void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const UnitHalfSp
     requireFinite(poseA);
     collideNormalised(a, poseA, b, settings, &angularTolerance, out);
 }
+
+template <ImportanceOrder order>
+void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b, const Settings& settings,
+                          Manifold& out) {
+    requireFinite(poseA);
+    collideNormalised<order>(a, poseA, b, settings, nullptr, out);
+}
+
+template <ImportanceOrder order>
+void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b, const Settings& settings,
+                          const AngularTolerance& angularTolerance, Manifold& out) {
+    requireFinite(poseA);
+    collideNormalised<order>(a, poseA, b, settings, &angularTolerance, out);
+}
+
+template void collideHalfSpaceInto<ImportanceOrder::AmongEqualDepths>(const Polytope&, const Pose&,
+                                                                      const UnitHalfSpace&, const Settings&, Manifold&);
+template void collideHalfSpaceInto<ImportanceOrder::AmongEqualDepths>(const Polytope&, const Pose&,
+                                                                      const UnitHalfSpace&, const Settings&,
+                                                                      const AngularTolerance&, Manifold&);
 
 Manifold collideGeneral(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings) {
     requireFinite(poseA);  // first: a bad pose is reported before a bad plane

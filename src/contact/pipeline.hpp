@@ -169,7 +169,7 @@ template <class Hooks>
                                                        double& /*normalOverlap*/, const Pose& poseA,
                                                        const Settings& settings, Manifold& manifold) {
     const PlaneLift lift{frame.a, frame.plane, settings, frame.tolerance, -settings.margin - frame.tolerance};
-    lift.liftFeature(
+    lift.liftFeature<Hooks::kOrder>(
         manifold.featureA, hooks.deepest, hooks.cap(), [&](int v) { return hooks.depthOf(frame, v); }, poseA,
         manifold);
     return Composed::Done;

@@ -61,6 +61,9 @@ public:
     // Always inlined into liftFeature: the points stay where the lift left them, the settings are
     // read once, and planar coordinates (a plane basis: a square root and a division) are made only
     // where the ranking reads them (3 or more points).
+    // `order`: AmongEqualDepths leaves the points in lift order where no two depths are equal
+    // (half_space.hpp; the caller orders them by depth, and every point is kept here anyway).
+    template <ImportanceOrder order>
     [[gnu::always_inline]] void emit(const Vec3& normal, const Pose& poseA, int maxCount, double hysteresis,
                                      double tolerance, Manifold& manifold) {
         // Here count_ ≤ maxCount (liftFeature's condition; a lone deepest vertex: 1 ≤ maxCount), so
@@ -71,6 +74,9 @@ public:
         int count = n;
         if (n == 1) {  // one point: nothing to order
             chosen[0] = 0;
+        } else if (order == ImportanceOrder::AmongEqualDepths && n >= 3 && allDepthsDiffer()) {
+            // (Two points take the comparison below, cheaper than the test.)
+            for (int i = 0; i < n; ++i) chosen[i] = i;
         } else {
             // rule.identity = Rᵀ·identityDirection(), column by column (for two points only where
             // both are within the tolerance of the deepest).
@@ -132,6 +138,15 @@ public:
     }
 
 private:
+    // Whether no two depths compare equal (== as the caller's depth order compares them: 0 and −0
+    // are equal, and so tie).
+    bool allDepthsDiffer() const {
+        for (int i = 1; i < count_; ++i)
+            for (int j = 0; j < i; ++j)
+                if (depth_[i] == depth_[j]) return false;
+        return true;
+    }
+
     double mx_, my_, mz_;
     double x_[kMaxManifoldPoints], y_[kMaxManifoldPoints], z_[kMaxManifoldPoints];
     double depth_[kMaxManifoldPoints];
@@ -229,7 +244,8 @@ struct PlaneLift {
     // The feature's points into the manifold, ranked (and reduced) as collideGeneral's emit does:
     // in fixed arrays when they cannot outnumber the caller's maximum, gathered otherwise. A
     // tilted face whose points all float keeps the deepest vertex.
-    template <class VertexDepth>
+    // `order`: the order the caller needs (half_space.hpp).
+    template <ImportanceOrder order = ImportanceOrder::Full, class VertexDepth>
     void liftFeature(const Feature& feature, int deepest, const SmallVector<int, 8>* cap, VertexDepth depthOfVertex,
                      const Pose& poseA, Manifold& manifold) const {
         const Vec3 normal = -plane.m;  // stage 1's, the plane's own (made here: not kept in memory for the call)
@@ -256,7 +272,7 @@ struct PlaneLift {
                 }
             }
             keepDeepestIfNone(points);
-            points.emit(normal, poseA, maxCount, settings.reductionHysteresis, tolerance, manifold);
+            points.template emit<order>(normal, poseA, maxCount, settings.reductionHysteresis, tolerance, manifold);
             return;
         }
         GatheredPoints points(plane.m);

@@ -383,15 +383,20 @@ const gdc::detail::AngularTolerance& angularToleranceOf(detail::ThreadCache& cac
 
 // A plane's normalisation, made once per plane (planeSlot), where the core accepted it.
 
+// The answer goes to writeContacts alone, which orders the points by depth, keeping the order of
+// equal depths: the core's importance order is asked for only among equal depths
+// (ImportanceOrder::AmongEqualDepths, half_space.hpp), so a face whose corners all have different
+// depths (every tilted resting face) is not ranked — the same contacts, in the same order.
 void queryInto(const Polytope& a, const Pose& poseA, const detail::ThreadCache::PlaneSlot& plane, const HalfSpace& b,
                const Settings& settings, detail::ThreadCache& cache, Manifold& out) {
     if (gdc::detail::halfSpaceFastPathApplies(a, settings)) {
         if (plane.normalised) {
             const gdc::detail::UnitHalfSpace unit{plane.normalisedNormal, plane.normalisedOffset};
+            constexpr gdc::detail::ImportanceOrder order = gdc::detail::ImportanceOrder::AmongEqualDepths;
             // A box's feature takes no AngularTolerance (its lazy bounds): the lookup only for hulls.
-            if (a.isBox()) return gdc::detail::collideHalfSpaceInto(a, poseA, unit, settings, out);
-            return gdc::detail::collideHalfSpaceInto(a, poseA, unit, settings,
-                                                     angularToleranceOf(cache, settings.angularTolerance), out);
+            if (a.isBox()) return gdc::detail::collideHalfSpaceInto<order>(a, poseA, unit, settings, out);
+            return gdc::detail::collideHalfSpaceInto<order>(a, poseA, unit, settings,
+                                                            angularToleranceOf(cache, settings.angularTolerance), out);
         }
         return gdc::detail::collideHalfSpaceInto(a, poseA, b, settings, out);
     }

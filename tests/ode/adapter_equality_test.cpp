@@ -6,7 +6,9 @@
 // (equal depths in the core's order of importance), depth clamped at 0. The adapter computes the
 // box–box and box–plane answers in place (detail::collideBoxBoxInto, collideHalfSpaceInto) and
 // skips the normal's square root where its squared length is exactly 1; this pins those shortcuts
-// to gdc::collide's own path. The largest difference found is printed (and required to be 0).
+// to gdc::collide's own path — and the half-space path's face points, which the adapter has the
+// core rank only among equal depths (resting poses with exact ties among them). The largest
+// difference found is printed (and required to be 0).
 #include <gdcontact/ode.hpp>
 
 #include "ode_support.hpp"
@@ -138,6 +140,21 @@ Pose nearlyAligned(std::mt19937_64& random, const Vec3& position) {
     return Pose{rotationAbout(Vec3(tilt(random), tilt(random), 1).normalized(), tilt(random) * 100), position};
 }
 
+// A resting pose whose face's corners tie in depth to the bit (the adapter asks the core to rank
+// a face's points only among equal depths, collide.cpp's queryInto): flat on the ground (four
+// equal depths), or tilted about one of A's own axes (two pairs of equal depths); the other poses
+// nearly aligned (every depth different).
+Pose restingWithTies(std::mt19937_64& random, int i, double height) {
+    std::uniform_real_distribution<double> unit(-0.5, 0.5);
+    const Vec3 position(unit(random), unit(random), height + 0.01 * unit(random));
+    switch (i % 4) {
+        case 1: return Pose{Mat3::Identity(), position};
+        case 2: return Pose{rotationAbout(Vec3::UnitX(), 0.002 * unit(random)), position};
+        case 3: return Pose{rotationAbout(Vec3::UnitY(), 0.002 * unit(random)), position};
+        default: return nearlyAligned(random, position);
+    }
+}
+
 void report(const char* type, const Comparison& c) {
     std::printf("adapter = core, %s: %lld calls, %.2f contacts per call, %lld mismatches, largest difference %g\n",
                 type, c.calls, static_cast<double>(c.contacts) / static_cast<double>(c.calls), c.mismatches, c.largest);
@@ -177,7 +194,7 @@ void checkEveryPairType(const Settings& installed) {
             setPose(box1, pose);
         },
         box1, plane, installed, 2);
-    const Comparison boxGround = run([&](std::mt19937_64& random, int) { setPose(box2, nearlyAligned(random, Vec3(0, 0, 0.15 + 0.01 * unit(random)))); },
+    const Comparison boxGround = run([&](std::mt19937_64& random, int i) { setPose(box2, restingWithTies(random, i, 0.15)); },
                                      box2, ground, installed, 3);
     report("box-plane (tilted plane)", boxPlane);
     report("box-plane (ground, resting)", boxGround);
@@ -190,7 +207,10 @@ void checkEveryPairType(const Settings& installed) {
         boxHull, plane, installed, 4);
     const Comparison cloudPlane = run([&](std::mt19937_64& random, int) { setPose(cloudHull, randomPose(random, 0.5)); },
                                       cloudHull, ground, installed, 5);
+    const Comparison boxHullGround = run([&](std::mt19937_64& random, int i) { setPose(boxHull, restingWithTies(random, i, 0.3)); },
+                                         boxHull, ground, installed, 8);
     report("convex-plane (box hull)", convexPlane);
+    report("convex-plane (box hull, ground, resting)", boxHullGround);
     report("convex-plane (cloud hull)", cloudPlane);
     // Hull–hull: the box-shaped hull against the cloud's hull, and box against hull.
     const Comparison hullHull = run(
@@ -208,7 +228,8 @@ void checkEveryPairType(const Settings& installed) {
     report("hull-hull", hullHull);
     report("box-convex", boxHullPair);
 
-    for (const Comparison* c : {&boxBox, &boxPlane, &boxGround, &convexPlane, &cloudPlane, &hullHull, &boxHullPair}) {
+    for (const Comparison* c :
+         {&boxBox, &boxPlane, &boxGround, &convexPlane, &boxHullGround, &cloudPlane, &hullHull, &boxHullPair}) {
         CHECK(c->calls == 2 * kPosesPerType);
         CHECK(c->contacts > c->calls / 2);  // the poses mostly touch: the comparison has contacts to compare
         CHECK(c->mismatches == 0);
