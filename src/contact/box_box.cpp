@@ -80,8 +80,12 @@ namespace {
 // The box pair's hooks for the one composition (pipeline.hpp): each stage in the boxes' closed
 // form; the rare branches (no growth-distance normal, the overhang check, an empty intersection, a
 // depth confirmation that may add a point) are delegated to the general hooks whole.
+template <bool SmallFeatures>
 struct BoxPairHooks {
     static constexpr bool kDelegatesRareCases = true;
+    // Box features (a vertex, an edge, a face's four corners) intersected in fixed arrays, unless a
+    // test asks for the general intersection to compare with (collideBoxBoxInto's flag).
+    static constexpr bool kSmallFeatures = SmallFeatures;
     explicit BoxPairHooks(const Settings& settings) : settings(settings) {}
     const Settings& settings;
     LazyAngularTolerance angularTolerance{settings.angularTolerance};
@@ -141,17 +145,28 @@ struct BoxPairHooks {
 
 }  // namespace
 
-void collideBoxBoxInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
+namespace {
+
+template <bool SmallFeatures>
+void collideBoxBoxWith(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
                        const Settings& settings, Manifold& manifold) {
-    BoxPairHooks hooks(settings);
+    BoxPairHooks<SmallFeatures> hooks(settings);
     if (composeStages(hooks, a, poseA, b, poseB, settings, manifold) == Composed::Delegate)
         manifold.assignUsed(collideGeneral(a, poseA, b, poseB, settings));
 }
 
+}  // namespace
+
+void collideBoxBoxInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
+                       const Settings& settings, Manifold& manifold) {
+    collideBoxBoxWith<true>(a, poseA, b, poseB, settings, manifold);
+}
+
 Manifold collideBoxBox(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
-                       const Settings& settings) {
+                       const Settings& settings, bool smallIntersection) {
     Manifold manifold;
-    collideBoxBoxInto(a, poseA, b, poseB, settings, manifold);
+    if (smallIntersection) collideBoxBoxInto(a, poseA, b, poseB, settings, manifold);
+    else collideBoxBoxWith<false>(a, poseA, b, poseB, settings, manifold);
     return manifold;
 }
 

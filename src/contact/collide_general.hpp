@@ -36,9 +36,11 @@ constexpr double kClearlySmallerOverlap = 0.5;
 
 /// The general pipeline's early outs for a separated pair: bounding spheres about the centroids,
 /// then the line of centres as a separating axis (more than `margin` apart, beyond `tolerance`).
-/// `centreOffset` is pair.centreB − pair.centreA and `centreDistance` its length.
+/// `centreOffset` is pair.centreB − pair.centreA and `centreDistance` its length. Two boxes have
+/// their overlap along the line of centres in closed form (the same decision; `closedFormBoxes`
+/// false: the support searches it replaced, for the test comparing the two).
 bool separatedByEarlyOut(const MinkowskiDifference& pair, const Vec3& centreOffset, double centreDistance, double size,
-                         double margin, double tolerance);
+                         double margin, double tolerance, bool closedFormBoxes = true);
 
 /// An edge–edge contact's normal: the edges' common perpendicular, turned to agree with `normal`,
 /// replaces it (and `normalOverlap` with the pair's overlap along it), unless the edges are parallel

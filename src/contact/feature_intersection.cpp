@@ -280,6 +280,123 @@ void intersectFeatures(const FeatureView& a, const FeatureView& b, const Vec3& n
                                 normal, tolerance, minimumDepth, spanRegion, true, out);
 }
 
+// The same intersection for features of at most four points without pieces (a box's vertex, edge
+// or face): every step of the general one above — the projection and its orientation, the
+// Sutherland–Hodgman clip edge by edge with the same slack, the segment and point tests, the
+// de-duplication, the lifting and the region's boundary crossings — with the same expressions on
+// the same numbers in the same order, so the same points to the bit; only the storage differs
+// (fixed arrays sized by the worst case instead of growable vectors, the counts in registers).
+// The bits matter beyond rounding: the centroid rule's choice among the equal-area triangles of a
+// rectangular region is decided by the clip's last bits (docs/algorithm.md).
+// tests/small_intersection_test.cpp checks both equal, bit for bit, on 10^5 poses of each kind of
+// box pair.
+void intersectSmallFeatures(const FeatureView& a, const FeatureView& b, const Vec3& normal, double tolerance,
+                            double minimumDepth, bool spanRegion, LiftedPoints& out) {
+    // A clip by four sides at most doubles the subject's ≤ 4 points per side: 64 is the bound.
+    constexpr int kMaxRegion = 64;
+    Vec3 u, v;
+    planeBasis(normal, u, v);
+    Vec2 projectedA[4], projectedB[4];
+    auto projectInto = [&](const FeatureView& feature, Vec2* points) {
+        const int n = feature.count;
+        for (int i = 0; i < n; ++i) points[i] = Vec2(feature.points[i].dot(u), feature.points[i].dot(v));
+        if (n >= 3) {
+            double area = cross2(points[n - 1], points[0]);
+            for (int i = 0; i + 1 < n; ++i) area += cross2(points[i], points[i + 1]);
+            if (area < 0)
+                for (int i = 0, j = n - 1; i < j; ++i, --j) std::swap(points[i], points[j]);
+        }
+    };
+    projectInto(a, projectedA);
+    projectInto(b, projectedB);
+    const LiftedHeight heightA(a, projectedA, u, v, normal), heightB(b, projectedB, u, v, normal);
+
+    // intersect2d: the one with more points clips the other (B's when as many).
+    Vec2 buffers[2][kMaxRegion];
+    const Vec2* region = buffers[0];
+    int regionCount = 0;
+    const bool aHasMore = a.count >= b.count;
+    const Vec2* clip = aHasMore ? projectedA : projectedB;
+    const int clipCount = aHasMore ? a.count : b.count;
+    const Vec2* subject = aHasMore ? projectedB : projectedA;
+    const int subjectCount = aHasMore ? b.count : a.count;
+    if (clipCount >= 3) {
+        // clipByConvexPolygon.
+        const Vec2* current = subject;
+        int n = subjectCount;
+        int written = 0;
+        for (int e = 0; e < clipCount && n > 0; ++e) {
+            const Vec2& corner = clip[e];
+            const Vec2 edge = clip[e + 1 == clipCount ? 0 : e + 1] - corner;
+            const double length = edge.norm();
+            if (!(length > 0)) continue;
+            Vec2* output = buffers[written++ & 1];
+            int count = 0;
+            const double slack = tolerance * length;
+            auto distance = [&](const Vec2& p) { return cross2(edge, p - corner); };
+            const double first = distance(current[0]);
+            double dp = first;
+            auto step = [&](const Vec2& p, const Vec2& q, double dq) {
+                if (dp >= -slack) output[count++] = p;
+                if ((dp < -slack && dq > slack) || (dp > slack && dq < -slack))
+                    output[count++] = p + (q - p) * (dp / (dp - dq));
+                dp = dq;
+            };
+            for (int i = 0; i + 1 < n; ++i) step(current[i], current[i + 1], distance(current[i + 1]));
+            if (n >= 3) {
+                step(current[n - 1], current[0], first);
+            } else if (dp >= -slack) {
+                output[count++] = current[n - 1];
+            }
+            current = output, n = count;
+        }
+        region = current, regionCount = n;
+    } else {
+        Polygon2 small;  // at most two points: inline storage
+        if (clipCount == 2 && subjectCount == 2) {
+            intersectSegments(clip[0], clip[1], subject[0], subject[1], tolerance, small);
+        } else if (clipCount == 2) {
+            if (pointOnSegment(subject[0], clip[0], clip[1], tolerance)) small.push_back(subject[0]);
+        } else if ((clip[0] - subject[0]).norm() <= tolerance) {
+            small.push_back(subject[0]);
+        }
+        regionCount = static_cast<int>(small.size());
+        for (int i = 0; i < regionCount; ++i) buffers[0][i] = small[i];
+        region = buffers[0];
+    }
+
+    // intersectPieces without caps (no merging).
+    const double toleranceSquared = tolerance * tolerance;
+    Vec2 unique[kMaxRegion];
+    int count = 0;
+    for (int i = 0; i < regionCount; ++i) {
+        const Vec2& p = region[i];
+        if (count == 0 || (p - unique[count - 1]).squaredNorm() > toleranceSquared) unique[count++] = p;
+    }
+    while (count > 1 && (unique[0] - unique[count - 1]).squaredNorm() <= toleranceSquared) --count;
+
+    std::size_t emitted = out.size();
+    LiftedPoint* points = out.reserve(emitted + 2 * count);
+    auto emit = [&](const Vec2& q, double hA, double hB) {
+        points[emitted++] = {q.x() * u + q.y() * v + 0.5 * (hA + hB) * normal, hA - hB, q, 0, 0};
+    };
+    double heightsA[kMaxRegion], heightsB[kMaxRegion];
+    for (int i = 0; i < count; ++i) heightsA[i] = heightA(unique[i]), heightsB[i] = heightB(unique[i]);
+    const int edges = count >= 3 ? count : (count == 2 ? 1 : 0);
+    const double keepDepth = minimumDepth - tolerance;
+    for (int i = 0; i < count; ++i) {
+        const double depth = heightsA[i] - heightsB[i];
+        if (depth >= keepDepth) emit(unique[i], heightsA[i], heightsB[i]);
+        if (!spanRegion || i >= edges) continue;
+        const int next = i + 1 == count ? 0 : i + 1;
+        const double t = contactBoundaryCrossing(depth, heightsA[next] - heightsB[next], minimumDepth, tolerance);
+        if (std::isnan(t)) continue;
+        const Vec2 crossing = unique[i] + t * (unique[next] - unique[i]);
+        emit(crossing, heightA(crossing), heightB(crossing));
+    }
+    out.setSize(emitted);
+}
+
 SmallVector<Vec2, 16> clipConvexPolygon(const Vec2* subject, int n, const Vec2* clip, int sides, double tolerance) {
     Polygon2 subjectPolygon, clipPolygon, buffers[2];
     for (int i = 0; i < n; ++i) subjectPolygon.push_back(subject[i]);

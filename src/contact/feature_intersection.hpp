@@ -90,6 +90,13 @@ LiftedPoints intersectFeatures(const FeatureGeometry& a, const FeatureGeometry& 
 void intersectFeatures(const FeatureView& a, const FeatureView& b, const Vec3& normal, double tolerance,
                        double minimumDepth, bool spanRegion, LiftedPoints& out);
 
+/// intersectFeatures for two features of at most four points each and no pieces (a box's vertex,
+/// edge or face): the same steps on the same numbers, so the same points bit for bit, in fixed
+/// arrays (the box–box path's; the general pipeline keeps the overload above, and
+/// tests/small_intersection_test.cpp compares the two).
+void intersectSmallFeatures(const FeatureView& a, const FeatureView& b, const Vec3& normal, double tolerance,
+                            double minimumDepth, bool spanRegion, LiftedPoints& out);
+
 /// Sutherland–Hodgman clip of `subject` (a convex counter-clockwise polygon of n ≥ 3 points, a
 /// segment or a point) by the half-planes left of each edge of the convex counter-clockwise
 /// polygon `clip`, exactly as intersectFeatures clips; exposed for its test (the result's points,

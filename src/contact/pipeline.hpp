@@ -13,6 +13,8 @@
 // HalfSpaceFrame. Templates, so that each shape's hooks inline into straight-line code.
 //
 // A pair's hooks struct supplies:
+//   static constexpr bool kSmallFeatures (optional) — true: every feature has at most four points
+//       and no pieces (a box's), intersected in fixed arrays (intersectSmallFeatures);
 //   static constexpr bool kDelegatesRareCases — true: the overhang check and an empty intersection
 //       are not handled but returned as Composed::Delegate (the caller runs the general hooks);
 //   bool acceptsPoses(poseA, poseB)            — false: Delegate (or throw the input's error);
@@ -41,6 +43,7 @@
 #include "geometry/minkowski.hpp"
 
 #include <cmath>
+#include <type_traits>
 
 namespace gdc::detail {
 
@@ -109,6 +112,16 @@ template <class Hooks>
     return stage1;
 }
 
+/// Whether the hooks' features are all small (Hooks::kSmallFeatures: at most four points and no
+/// pieces, a box's), so that stage 3 intersects them in fixed arrays (intersectSmallFeatures, the
+/// same points as intersectFeatures to the bit); hooks without the flag get the general one.
+template <class Hooks, class = void>
+struct SmallFeaturesFlag : std::false_type {};
+template <class Hooks>
+struct SmallFeaturesFlag<Hooks, std::void_t<decltype(Hooks::kSmallFeatures)>> : std::bool_constant<Hooks::kSmallFeatures> {};
+template <class Hooks>
+constexpr bool intersectsSmallFeatures() { return SmallFeaturesFlag<Hooks>::value; }
+
 /// Stage 3 and the manifold written out, for two polytopes: the features in A's frame (refining
 /// the normal among their faces), their intersection in the contact plane, the depth
 /// confirmation, the supports' gap where nothing intersects, emitManifold.
@@ -125,7 +138,10 @@ template <class Hooks>
 
     // Stage 3: the intersection in the contact plane, each point with its own depth.
     LiftedPoints kept;
-    intersectFeatures(viewA, viewB, normal, tolerance, -settings.margin, settings.spanContactRegion, kept);
+    if constexpr (intersectsSmallFeatures<Hooks>())
+        intersectSmallFeatures(viewA, viewB, normal, tolerance, -settings.margin, settings.spanContactRegion, kept);
+    else
+        intersectFeatures(viewA, viewB, normal, tolerance, -settings.margin, settings.spanContactRegion, kept);
     if constexpr (Hooks::kDelegatesRareCases)
         if (kept.empty()) return Composed::Delegate;  // the fallbacks: a ray cast's witnesses or the supports' gap
 
