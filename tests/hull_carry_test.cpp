@@ -10,6 +10,7 @@
 #include "contact/collide_general.hpp"
 #include "geometry/minkowski.hpp"
 #include "geometry/hull_gauge.hpp"
+#include "contact/gauss_map.hpp"
 #include "sanitizer_scale.hpp"
 #include "touching_poses.hpp"
 
@@ -152,4 +153,51 @@ TEST_CASE("hull carry: carrying the enumeration's findings never changes a manif
     compareOn("cube hull and box", hulls.cubeHull, hulls.box, 14);
     compareOn("small random hull and cube hull", hulls.pebble, hulls.cubeHull, 15);
     compareOn("random hulls (24 and 10 points)", hulls.rock, hulls.pebble, 16);
+}
+
+// Stage 2's proof for the face the enumeration proposes (gauss_map.hpp, faceIsSelected) against the
+// Gauss-map search it spares: on 10^5 directions per polytope near each face's normal (on it, within
+// the angular tolerance, at about its edge, and beyond), with the support vertex the search would
+// get, every face the proof accepts is the feature the search returns. The proof must also fire
+// (it is what spares the search on resting pairs).
+int compareFaceProof(const char* name, const Polytope& polytope, std::uint32_t seed) {
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    const Settings settings;
+    const detail::AngularTolerance tolerance(settings.angularTolerance);
+    const int faceCount = static_cast<int>(polytope.faces().size());
+    int proved = 0;
+    for (int i = 0; i < kPoses; ++i) {
+        const int face = i % faceCount;
+        const Vec3& n = polytope.faces()[face].normal;
+        const double scales[] = {0.0, 1e-12, 0.3 * settings.angularTolerance, settings.angularTolerance,
+                                 3 * settings.angularTolerance, 0.5};
+        const double tilt = scales[(i / faceCount) % 6];
+        const Vec3 direction = (n + tilt * Vec3(unit(random), unit(random), unit(random))).normalized();
+        const int support = polytope.supportVertex(direction, Settings{}.bruteForceSupportLimit);
+        // A support vertex of another face now and then: the proof must then not accept.
+        const int anySupport = i % 7 == 0 ? static_cast<int>(random() % polytope.vertices().size()) : support;
+        if (!detail::faceIsSelected(polytope, face, direction, anySupport, tolerance)) continue;
+        ++proved;
+        const Feature searched = detail::selectFeature(polytope, direction, anySupport, tolerance);
+        INFO(name << " direction " << i << " face " << face);
+        REQUIRE(searched.type == FeatureType::Face);
+        REQUIRE(searched.index == face);
+    }
+    std::printf("stage 2's face proof, %s: %d directions, the search spared (and agreeing) on %d\n", name, kPoses,
+                proved);
+    return proved;
+}
+
+TEST_CASE("hull carry: stage 2's face proof returns the Gauss-map search's feature (10^5 directions per polytope)") {
+    std::mt19937 random(23);
+    const ProvingHulls hulls(random);
+    CHECK(compareFaceProof("cube hull", hulls.cubeHull, 41) > kPoses / 4);
+    CHECK(compareFaceProof("plank hull", hulls.plankHull, 42) > kPoses / 4);
+    CHECK(compareFaceProof("box", hulls.box, 43) > kPoses / 4);
+    compareFaceProof("small random hull (10 points)", hulls.pebble, 44);
+    compareFaceProof("random hull (24 points)", hulls.rock, 45);
+    // Beyond kOtherFaceCosineMaxFaces faces there is no bound (largestOtherCosine = 2): no proof.
+    const int proved = compareFaceProof("large hull (300 points)", hulls.boulder, 46);
+    if (hulls.boulder.faces().size() > Polytope::kOtherFaceCosineMaxFaces) CHECK(proved == 0);
 }

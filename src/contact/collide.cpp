@@ -512,8 +512,15 @@ struct GeneralPairHooks {
         const Vec3 directionB = frame.bInA.rotation.transpose() * -n;
         const int supportA = supportsKnown ? pair.lastSupportA : pair.supportA(n);
         const int supportB = supportsKnown ? pair.lastSupportB : pair.supportBInB(directionB);
-        manifold.featureA = selectFeature(frame.a, n, supportA, angularTolerance);
-        manifold.featureB = selectFeature(frame.b, directionB, supportB, angularTolerance);
+        // The enumeration's face of each body, where it carried one, proved rather than searched
+        // (faceIsSelected: the same feature; the search where the proof fails).
+        manifold.featureA = carry.faceA >= 0 && faceIsSelected(frame.a, carry.faceA, n, supportA, angularTolerance)
+                                ? Feature{FeatureType::Face, carry.faceA}
+                                : selectFeature(frame.a, n, supportA, angularTolerance);
+        manifold.featureB =
+            carry.faceB >= 0 && faceIsSelected(frame.b, carry.faceB, directionB, supportB, angularTolerance)
+                ? Feature{FeatureType::Face, carry.faceB}
+                : selectFeature(frame.b, directionB, supportB, angularTolerance);
         featurePieces(frame.a, manifold.featureA, n, angularTolerance, piecesA);
         featurePieces(frame.b, manifold.featureB, directionB, angularTolerance, piecesB);
     }

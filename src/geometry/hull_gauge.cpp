@@ -178,6 +178,9 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
         return s > marginA && s < 1 - marginA && t > marginB && t < 1 - marginB;
     };
 
+    // Each body's face of largest ratio (m·d)/h_K(m) among its faces evaluated, as along/support
+    // (cross-multiplied; 0/1: none yet): the carry's proposal for stage 2's features (faceA, faceB).
+    double proposedAlongA = 0, proposedSupportA = 1, proposedAlongB = 0, proposedSupportB = 1;
     int bestFace = -1;  // the face whose facet of K is the best so far, whose it is, the other's support
     bool bestFaceOfA = true;
     int bestSupport = 0;
@@ -239,7 +242,11 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
         if (!(along > 0) || along < threshold) continue;
         const Lowest lowestB = firstOfA && f == firstFace ? firstLowest : lowestAlong(n, verticesB, countB);
         const double overlap = facesA[f].offset - lowestB.value;  // max n·A − min n·B
-        if (carry) carry->overlapA[f] = overlap, carry->knownA |= std::uint64_t(1) << f;
+        if (carry) {
+            carry->overlapA[f] = overlap, carry->knownA |= std::uint64_t(1) << f;
+            if (along * proposedSupportA > proposedAlongA * (overlap + along))
+                carry->faceA = f, proposedAlongA = along, proposedSupportA = overlap + along;
+        }
         const double before = exitAlong;
         consider(along, overlap + along, n, [&] { return n; });
         if (exitAlong != before) bestFace = f, bestFaceOfA = true, bestSupport = lowestB.index;
@@ -252,7 +259,11 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
         if (!(along > 0) || along < threshold) continue;
         const Lowest lowestA = !firstOfA && f == firstFace ? firstLowest : lowestAlong(n, verticesA.data(), countA);
         const double overlap = facesB[f].offset + n.dot(pair.bInA.position) - lowestA.value;  // max −n·A − min −n·B
-        if (carry) carry->overlapB[f] = overlap, carry->knownB |= std::uint64_t(1) << f;
+        if (carry) {
+            carry->overlapB[f] = overlap, carry->knownB |= std::uint64_t(1) << f;
+            if (along * proposedSupportB > proposedAlongB * (overlap + along))
+                carry->faceB = f, proposedAlongB = along, proposedSupportB = overlap + along;
+        }
         const double before = exitAlong;
         consider(along, overlap + along, gaussB[f], [&] { return gaussB[f]; });
         if (exitAlong != before) bestFace = f, bestFaceOfA = false, bestSupport = lowestA.index;
