@@ -498,6 +498,12 @@ struct GeneralPairHooks {
             boundFaceOverlaps && searchesWithoutState
                 ? std::max(growth.faceOverlapLowerBound, a.inradius() + b.inradius() - frame.centreDistance)
                 : growth.faceOverlapLowerBound;
+        // The enumeration's bound of every face's overlap (HullGaugeCarry::faceOverlapBound): on a
+        // stack of slabs and prisms the inradius bound above is weak (a slab's inradius is half its
+        // thickness), and the overhang check was a quarter of the query (callgrind, solver_seeds
+        // hulls scene).
+        if (carrying && growth.valid)
+            stage1.faceOverlapLowerBound = std::max(stage1.faceOverlapLowerBound, carry.faceOverlapBound);
         return stage1;
     }
 

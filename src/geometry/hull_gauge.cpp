@@ -17,6 +17,7 @@
 // the edges of each body, three quarters of the pairs.
 #include "geometry/hull_gauge.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -235,6 +236,8 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
         const double radii = a.inradius() + b.inradius() - 1e-12 * size;
         if (support > 0 && radii > 0) threshold = firstAlong / support * radii * (1 - 1e-9);
     }
+    // The least overlap among the faces evaluated, for the carry's bound of every face's overlap.
+    double leastOverlap = INFINITY;
     // A's faces: h_K(n) = (offset − n·c_A) + (n·c_B − min n·B) = offset − min n·B + n·d.
     for (int f = 0; f < faceCountA; ++f) {
         const Vec3& n = facesA[f].normal;
@@ -244,6 +247,7 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
         const double overlap = facesA[f].offset - lowestB.value;  // max n·A − min n·B
         if (carry) {
             carry->overlapA[f] = overlap, carry->knownA |= std::uint64_t(1) << f;
+            leastOverlap = std::min(leastOverlap, overlap);
             if (along * proposedSupportA > proposedAlongA * (overlap + along))
                 carry->faceA = f, proposedAlongA = along, proposedSupportA = overlap + along;
         }
@@ -261,6 +265,7 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
         const double overlap = facesB[f].offset + n.dot(pair.bInA.position) - lowestA.value;  // max −n·A − min −n·B
         if (carry) {
             carry->overlapB[f] = overlap, carry->knownB |= std::uint64_t(1) << f;
+            leastOverlap = std::min(leastOverlap, overlap);
             if (along * proposedSupportB > proposedAlongB * (overlap + along))
                 carry->faceB = f, proposedAlongB = along, proposedSupportB = overlap + along;
         }
@@ -268,6 +273,12 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
         consider(along, overlap + along, gaussB[f], [&] { return gaussB[f]; });
         if (exitAlong != before) bestFace = f, bestFaceOfA = false, bestSupport = lowestA.index;
     }
+
+    // Every face's overlap is at least the bound: an evaluated face's is known (to rounding, the
+    // 1e-12 of the size taken off), and a face not evaluated reaches along d less than the threshold
+    // (or not at all), while its h_K is at least the inradii, so its overlap h_K − along exceeds
+    // r_A + r_B − threshold. The overhang check (pipeline.hpp) needs no search where it clears it.
+    if (carry) carry->faceOverlapBound = std::min(leastOverlap, a.inradius() + b.inradius() - threshold) - 1e-12 * size;
 
     // Where the ray's exit point p = d/σ lies inside the best face's facet of K (face ⊕ the other
     // body's support vertex) by more than rounding, that facet is the exit and σ is final: p is then

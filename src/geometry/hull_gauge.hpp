@@ -8,6 +8,7 @@
 #include "geometry/minkowski.hpp"
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 namespace gdc::detail {
@@ -50,6 +51,10 @@ struct HullGaugeCarry {
     /// gauss_map.hpp, proves it or the search runs) — on a resting pair the exit facet's face on its
     /// side and the nearly parallel face on the other.
     int faceA = -1, faceB = -1;
+    /// A lower bound of the pair's overlap along every face normal of A and of −B (their searched
+    /// overlaps, rounding included): stage 1's faceOverlapLowerBound, which spares the overhang check
+    /// where it clears half the normal's overlap. −∞ where the enumeration did not reach the faces.
+    double faceOverlapBound = -INFINITY;
     /// B's vertices in A's frame (pair.vertexB(i), bit for bit), as the enumeration placed them.
     std::array<Vec3, kMaxFaces> verticesB;
 };
