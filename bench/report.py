@@ -94,15 +94,16 @@ STANDS_IN_THE_WAY = {
                  "(160): the midway points and the ranking are the method's, which ODE does not compute.",
     "convex_plane": "As box–plane; for a hull the Gauss-map selection (selectFeature, about 450 instructions: 3 neighbour-edge and 9 face tests for a cube) "
                     "replaces the box's closed form.",
-    "hull8_libccd": "libccd's MPR returns one point. Of the full manifold's 9.75 k (core, callgrind): the growth "
-                    "distance by enumerating A − B's facets (hullGrowth) 2.57 k, the ranking of 8 points 1.98 k (of "
-                    "emitManifold's 2.44 k), the clip (intersectFeatures) 2.23 k, the features' geometry 0.59 k, "
-                    "feature selection 0.31 k (was 1.1 k: each body's face of largest ratio in the enumeration is "
-                    "proved the Gauss-map feature instead of searched, gauss_map.hpp faceIsSelected), stage 1's "
-                    "support searches 0.29 k. What hullGrowth finds (the overlaps along the faces it evaluated, its "
-                    "exit facet, B's placed vertices, each body's face) is carried into refineNormal, the depth "
-                    "certificate and the features, which no longer search again (the same manifolds: "
-                    "`core_tests \"hull carry*\"`).",
+    "hull8_libccd": "libccd's MPR returns one point. Of the full manifold's 9.8 k (core, callgrind, resting face, 8 "
+                    "points): the growth distance by enumerating A − B's facets (hullGrowth) 2.6 k, the clip "
+                    "(intersectFeatures) 2.2 k, the ranking of 8 points 2.0 k (of emitManifold's 2.4 k), the features' "
+                    "geometry 0.6 k, stage 1's support searches 0.3 k, feature selection 0.3 k (was 1.1 k: each body's "
+                    "face of largest ratio in the enumeration is proved the Gauss-map feature instead of searched, "
+                    "gauss_map.hpp faceIsSelected). What hullGrowth finds (the overlaps along the faces it evaluated "
+                    "and a bound of every other face's, its exit facet, B's placed vertices, each body's face) is "
+                    "carried into the overhang check, refineNormal, the depth certificate and the features, which no "
+                    "longer search again (the same manifolds: `core_tests \"hull carry*\"`). Off the resting face "
+                    "the overhang check no longer runs: hull_hull/8 6.7 k (was 8.3 k).",
     "hull8_bullet_sat": "Bullet's SAT over a cube's 3 + 3 face and 9 edge directions plus its clipping does the work "
                         "of our stages 1 and 3 only; the ranking (about a quarter of the call) is ours alone.",
     "hull_growth": "Through the adapter each 4096-vertex call now includes ODE's AABB update of the re-posed geom "
