@@ -243,3 +243,29 @@ TEST_CASE("hull carry: the enumeration's bound of the face overlaps holds (10^5 
     compareOverlapBound("small random hull and cube hull", hulls.pebble, hulls.cubeHull, 55);
     compareOverlapBound("random hulls (24 and 10 points)", hulls.rock, hulls.pebble, 56);
 }
+
+TEST_CASE("hull carry: Face::largestOtherCosine is the largest cosine to any other face, or 2 beyond the limit") {
+    std::mt19937 random(23);
+    const ProvingHulls hulls(random);
+    // A box's faces are perpendicular or opposite: exactly 0.
+    for (const Polytope::Face& face : hulls.cubeHull.faces()) CHECK(face.largestOtherCosine == 0);
+    // A random hull: the brute-force maximum over every other face (not only its neighbours).
+    for (const Polytope* polytope : {&hulls.rock, &hulls.pebble, &hulls.boulder}) {
+        const auto& faces = polytope->faces();
+        for (std::size_t f = 0; f < faces.size(); ++f) {
+            if (faces.size() > static_cast<std::size_t>(Polytope::kOtherFaceCosineMaxFaces)) {
+                CHECK(faces[f].largestOtherCosine == 2);
+                continue;
+            }
+            double largest = -1;
+            for (std::size_t g = 0; g < faces.size(); ++g)
+                if (g != f) largest = std::max(largest, faces[f].normal.dot(faces[g].normal));
+            CHECK(faces[f].largestOtherCosine == largest);
+            CHECK(faces[f].largestOtherCosine >= faces[f].nearestNeighbourCosine);
+        }
+    }
+    // Beyond the limit: a 2000-point cloud's hull has more faces than kOtherFaceCosineMaxFaces.
+    const Polytope fine = Polytope::fromPoints(randomCloud(random, 2000, Vec3(0.6, 0.6, 0.6)));
+    REQUIRE(fine.faces().size() > static_cast<std::size_t>(Polytope::kOtherFaceCosineMaxFaces));
+    for (const Polytope::Face& face : fine.faces()) CHECK(face.largestOtherCosine == 2);
+}
