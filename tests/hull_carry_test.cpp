@@ -10,6 +10,7 @@
 #include "contact/collide_general.hpp"
 #include "geometry/minkowski.hpp"
 #include "geometry/hull_gauge.hpp"
+#include "contact/gauss_map.hpp"
 #include "sanitizer_scale.hpp"
 #include "touching_poses.hpp"
 
@@ -152,4 +153,119 @@ TEST_CASE("hull carry: carrying the enumeration's findings never changes a manif
     compareOn("cube hull and box", hulls.cubeHull, hulls.box, 14);
     compareOn("small random hull and cube hull", hulls.pebble, hulls.cubeHull, 15);
     compareOn("random hulls (24 and 10 points)", hulls.rock, hulls.pebble, 16);
+}
+
+// Stage 2's proof for the face the enumeration proposes (gauss_map.hpp, faceIsSelected) against the
+// Gauss-map search it spares: on 10^5 directions per polytope near each face's normal (on it, within
+// the angular tolerance, at about its edge, and beyond), with the support vertex the search would
+// get, every face the proof accepts is the feature the search returns. The proof must also fire
+// (it is what spares the search on resting pairs).
+int compareFaceProof(const char* name, const Polytope& polytope, std::uint32_t seed) {
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    const Settings settings;
+    const detail::AngularTolerance tolerance(settings.angularTolerance);
+    const int faceCount = static_cast<int>(polytope.faces().size());
+    int proved = 0;
+    for (int i = 0; i < kPoses; ++i) {
+        const int face = i % faceCount;
+        const Vec3& n = polytope.faces()[face].normal;
+        const double scales[] = {0.0, 1e-12, 0.3 * settings.angularTolerance, settings.angularTolerance,
+                                 3 * settings.angularTolerance, 0.5};
+        const double tilt = scales[(i / faceCount) % 6];
+        const Vec3 direction = (n + tilt * Vec3(unit(random), unit(random), unit(random))).normalized();
+        const int support = polytope.supportVertex(direction, Settings{}.bruteForceSupportLimit);
+        // A support vertex of another face now and then: the proof must then not accept.
+        const int anySupport = i % 7 == 0 ? static_cast<int>(random() % polytope.vertices().size()) : support;
+        if (!detail::faceIsSelected(polytope, face, direction, anySupport, tolerance)) continue;
+        ++proved;
+        const Feature searched = detail::selectFeature(polytope, direction, anySupport, tolerance);
+        INFO(name << " direction " << i << " face " << face);
+        REQUIRE(searched.type == FeatureType::Face);
+        REQUIRE(searched.index == face);
+    }
+    std::printf("stage 2's face proof, %s: %d directions, the search spared (and agreeing) on %d\n", name, kPoses,
+                proved);
+    return proved;
+}
+
+TEST_CASE("hull carry: stage 2's face proof returns the Gauss-map search's feature (10^5 directions per polytope)") {
+    std::mt19937 random(23);
+    const ProvingHulls hulls(random);
+    CHECK(compareFaceProof("cube hull", hulls.cubeHull, 41) > kPoses / 4);
+    CHECK(compareFaceProof("plank hull", hulls.plankHull, 42) > kPoses / 4);
+    CHECK(compareFaceProof("box", hulls.box, 43) > kPoses / 4);
+    compareFaceProof("small random hull (10 points)", hulls.pebble, 44);
+    compareFaceProof("random hull (24 points)", hulls.rock, 45);
+    // Beyond kOtherFaceCosineMaxFaces faces there is no bound (largestOtherCosine = 2): no proof.
+    const int proved = compareFaceProof("large hull (300 points)", hulls.boulder, 46);
+    if (hulls.boulder.faces().size() > Polytope::kOtherFaceCosineMaxFaces) CHECK(proved == 0);
+}
+
+// The enumeration's bound of every face's overlap (HullGaugeCarry::faceOverlapBound, which spares
+// the overhang check) against the overlaps the check would search, along every face normal of A
+// and of −B: never above any, on 10^5 poses per pair type (overlapping, touching, deep every third).
+// The pipeline comparisons above show the manifolds it gives are the former path's.
+int compareOverlapBound(const char* name, const Polytope& a, const Polytope& b, std::uint32_t seed) {
+    std::mt19937 random(seed);
+    int bounded = 0, clears = 0;
+    double tightest = INFINITY;  // least (searched overlap − bound) / size
+    for (int i = 0; i < kPoses; ++i) {
+        auto [poseA, poseB] = randomTouchingPoses(random, a, b, i % 3 == 0, 0.03);
+        const detail::MinkowskiDifference pair(a, b, poseA.relative(poseB), Settings{}.bruteForceSupportLimit);
+        detail::HullGaugeCarry carry;
+        const detail::GrowthDistance growth = detail::hullGrowth(pair, &carry);
+        if (!growth.valid) continue;
+        ++bounded;
+        const double size = a.radius() + b.radius();
+        double least = INFINITY;
+        for (const Polytope::Face& face : a.faces()) least = std::min(least, pair.overlapAlong(face.normal));
+        for (const Polytope::Face& face : b.faces())
+            least = std::min(least, pair.overlapAlong(-(pair.bInA.rotation * face.normal)));
+        INFO(name << " pose " << i << " bound " << carry.faceOverlapBound << " least face overlap " << least);
+        REQUIRE(carry.faceOverlapBound <= least);
+        tightest = std::min(tightest, (least - carry.faceOverlapBound) / size);
+        clears += carry.faceOverlapBound >= 0.5 * pair.overlapAlong(growth.normal) + 1e-9 * size;
+    }
+    std::printf("the enumeration's face-overlap bound, %s: %d poses, never above a face's overlap (closest %.3g x size), "
+                "clears the overhang check on %d\n",
+                name, bounded, tightest, clears);
+    return clears;
+}
+
+TEST_CASE("hull carry: the enumeration's bound of the face overlaps holds (10^5 poses per pair type)") {
+    std::mt19937 random(23);
+    const ProvingHulls hulls(random);
+    CHECK(compareOverlapBound("8-vertex hull pair", hulls.cubeHull, hulls.cubeHull, 51) > kPoses / 10);
+    compareOverlapBound("cube hull on plank hull", hulls.cubeHull, hulls.plankHull, 52);
+    compareOverlapBound("box and cube hull", hulls.box, hulls.cubeHull, 53);
+    compareOverlapBound("cube hull and box", hulls.cubeHull, hulls.box, 54);
+    compareOverlapBound("small random hull and cube hull", hulls.pebble, hulls.cubeHull, 55);
+    compareOverlapBound("random hulls (24 and 10 points)", hulls.rock, hulls.pebble, 56);
+}
+
+TEST_CASE("hull carry: Face::largestOtherCosine is the largest cosine to any other face, or 2 beyond the limit") {
+    std::mt19937 random(23);
+    const ProvingHulls hulls(random);
+    // A box's faces are perpendicular or opposite: exactly 0.
+    for (const Polytope::Face& face : hulls.cubeHull.faces()) CHECK(face.largestOtherCosine == 0);
+    // A random hull: the brute-force maximum over every other face (not only its neighbours).
+    for (const Polytope* polytope : {&hulls.rock, &hulls.pebble, &hulls.boulder}) {
+        const auto& faces = polytope->faces();
+        for (std::size_t f = 0; f < faces.size(); ++f) {
+            if (faces.size() > static_cast<std::size_t>(Polytope::kOtherFaceCosineMaxFaces)) {
+                CHECK(faces[f].largestOtherCosine == 2);
+                continue;
+            }
+            double largest = -1;
+            for (std::size_t g = 0; g < faces.size(); ++g)
+                if (g != f) largest = std::max(largest, faces[f].normal.dot(faces[g].normal));
+            CHECK(faces[f].largestOtherCosine == largest);
+            CHECK(faces[f].largestOtherCosine >= faces[f].nearestNeighbourCosine);
+        }
+    }
+    // Beyond the limit: a 2000-point cloud's hull has more faces than kOtherFaceCosineMaxFaces.
+    const Polytope fine = Polytope::fromPoints(randomCloud(random, 2000, Vec3(0.6, 0.6, 0.6)));
+    REQUIRE(fine.faces().size() > static_cast<std::size_t>(Polytope::kOtherFaceCosineMaxFaces));
+    for (const Polytope::Face& face : fine.faces()) CHECK(face.largestOtherCosine == 2);
 }

@@ -23,7 +23,14 @@ public:
         /// The largest cosine between this face's normal and that of another face sharing a
         /// vertex with it: how close its nearest neighbour on the Gauss map is (bounds caps).
         double nearestNeighbourCosine = -1;
+        /// The largest cosine between this face's normal and that of any other face (every face,
+        /// not only its neighbours), for polytopes of at most kOtherFaceCosineMaxFaces faces; 2
+        /// (no bound) for larger ones. Stage 2 proves with it that a face is the Gauss-map feature
+        /// along a direction near its normal without searching (gauss_map.hpp, faceIsSelected).
+        double largestOtherCosine = 2;
     };
+    /// Most faces for which Face::largestOtherCosine is computed (it takes F² dot products).
+    static constexpr int kOtherFaceCosineMaxFaces = 64;
     /// An edge between vertices `tail` and `head`. On the Gauss map it is the arc between the
     /// normals of its two faces; `leftFace` has the edge tail→head in its CCW order.
     struct Edge {

@@ -465,7 +465,6 @@ struct GeneralPairHooks {
     Vec3 directionA = Vec3::Zero();
     FeatureType manifoldFeatureA = FeatureType::Vertex;
     bool separatingAxis = settings.normalMethod == NormalMethod::SeparatingAxis;
-    AngularTolerance angularTolerance{settings.angularTolerance};
     // With each feature its pieces: a face's cap, an edge's chain.
     SmallVector<int, 8> piecesA, piecesB;
 
@@ -515,6 +514,12 @@ struct GeneralPairHooks {
             boundFaceOverlaps && searchesWithoutState
                 ? std::max(growth.faceOverlapLowerBound, a.inradius() + b.inradius() - frame.centreDistance)
                 : growth.faceOverlapLowerBound;
+        // The enumeration's bound of every face's overlap (HullGaugeCarry::faceOverlapBound): on a
+        // stack of slabs and prisms the inradius bound above is weak (a slab's inradius is half its
+        // thickness), and the overhang check was a quarter of the query (callgrind, solver_seeds
+        // hulls scene).
+        if (carrying && growth.valid)
+            stage1.faceOverlapLowerBound = std::max(stage1.faceOverlapLowerBound, carry.faceOverlapBound);
         return stage1;
     }
 
@@ -524,12 +529,22 @@ struct GeneralPairHooks {
     // started at its answer stays there — and two searches are spared.
     void selectFeatures(const PairFrame& frame, const Vec3& n, bool first, Manifold& manifold) {
         const MinkowskiDifference& pair = frame.pair;
+        // Here rather than with the hooks: a pair the early out or stage 1 finds apart never needs
+        // it (callgrind, separated 8-vertex hull pair: its series was 42 of the call's 946).
+        const AngularTolerance angularTolerance(settings.angularTolerance);
         const bool supportsKnown = first && !separatingAxis;
         const Vec3 directionB = frame.bInA.rotation.transpose() * -n;
         const int supportA = supportsKnown ? pair.lastSupportA : pair.supportA(n);
         const int supportB = supportsKnown ? pair.lastSupportB : pair.supportBInB(directionB);
-        manifold.featureA = selectFeature(frame.a, n, supportA, angularTolerance);
-        manifold.featureB = selectFeature(frame.b, directionB, supportB, angularTolerance);
+        // The enumeration's face of each body, where it carried one, proved rather than searched
+        // (faceIsSelected: the same feature; the search where the proof fails).
+        manifold.featureA = carry.faceA >= 0 && faceIsSelected(frame.a, carry.faceA, n, supportA, angularTolerance)
+                                ? Feature{FeatureType::Face, carry.faceA}
+                                : selectFeature(frame.a, n, supportA, angularTolerance);
+        manifold.featureB =
+            carry.faceB >= 0 && faceIsSelected(frame.b, carry.faceB, directionB, supportB, angularTolerance)
+                ? Feature{FeatureType::Face, carry.faceB}
+                : selectFeature(frame.b, directionB, supportB, angularTolerance);
         featurePieces(frame.a, manifold.featureA, n, angularTolerance, piecesA);
         featurePieces(frame.b, manifold.featureB, directionB, angularTolerance, piecesB);
     }

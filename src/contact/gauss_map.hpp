@@ -45,6 +45,27 @@ struct AngularTolerance {
 /// in `direction` (the caller has usually just found it).
 Feature selectFeature(const Polytope& polytope, const Vec3& direction, int support, const AngularTolerance& tolerance);
 
+/// Whether selectFeature(polytope, direction, support, tolerance) returns `face`, proved without
+/// its search (stage 2 of a hull pair, whose enumeration proposes the face: hull_gauge.hpp). The
+/// search's candidates include every face around `support`, so `face` is one when `support` is its
+/// vertex; it wins when its cosine c_f exceeds the tolerance's and every other face's. Any other
+/// face g has n_g·direction ≤ n_g·n_f + |direction − n_f| ≤ largestOtherCosine + |direction − n_f|;
+/// c_f above that by more than the dot products' rounding (1e-14 for unit vectors) is strictly the
+/// largest, so the search's tie rule never comes in. The cosine is computed as the search does.
+inline bool faceIsSelected(const Polytope& polytope, int face, const Vec3& direction, int support,
+                           const AngularTolerance& tolerance) {
+    const Polytope::Face& f = polytope.faces()[face];
+    const Vec3& n = f.normal;
+    const double c = n.x() * direction.x() + n.y() * direction.y() + n.z() * direction.z();
+    if (!(c > tolerance.cosine)) return false;
+    const double margin = c - f.largestOtherCosine - 1e-14;
+    if (!(margin > 0) || !(margin * margin > (direction - n).squaredNorm() * (1 + 1e-9))) return false;
+    const int* vertices = polytope.faceVertices().data() + f.first;
+    for (int i = 0; i < f.count; ++i)
+        if (vertices[i] == support) return true;
+    return false;
+}
+
 /// Most faces one cap may hold (bounds the time a very finely tessellated flat region costs).
 constexpr int kMaxCapFaces = 64;
 

@@ -17,6 +17,7 @@
 // the edges of each body, three quarters of the pairs.
 #include "geometry/hull_gauge.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -178,6 +179,9 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
         return s > marginA && s < 1 - marginA && t > marginB && t < 1 - marginB;
     };
 
+    // Each body's face of largest ratio (m·d)/h_K(m) among its faces evaluated, as along/support
+    // (cross-multiplied; 0/1: none yet): the carry's proposal for stage 2's features (faceA, faceB).
+    double proposedAlongA = 0, proposedSupportA = 1, proposedAlongB = 0, proposedSupportB = 1;
     int bestFace = -1;  // the face whose facet of K is the best so far, whose it is, the other's support
     bool bestFaceOfA = true;
     int bestSupport = 0;
@@ -232,6 +236,8 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
         const double radii = a.inradius() + b.inradius() - 1e-12 * size;
         if (support > 0 && radii > 0) threshold = firstAlong / support * radii * (1 - 1e-9);
     }
+    // The least overlap among the faces evaluated, for the carry's bound of every face's overlap.
+    double leastOverlap = INFINITY;
     // A's faces: h_K(n) = (offset − n·c_A) + (n·c_B − min n·B) = offset − min n·B + n·d.
     for (int f = 0; f < faceCountA; ++f) {
         const Vec3& n = facesA[f].normal;
@@ -239,7 +245,12 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
         if (!(along > 0) || along < threshold) continue;
         const Lowest lowestB = firstOfA && f == firstFace ? firstLowest : lowestAlong(n, verticesB, countB);
         const double overlap = facesA[f].offset - lowestB.value;  // max n·A − min n·B
-        if (carry) carry->overlapA[f] = overlap, carry->knownA |= std::uint64_t(1) << f;
+        if (carry) {
+            carry->overlapA[f] = overlap, carry->knownA |= std::uint64_t(1) << f;
+            leastOverlap = std::min(leastOverlap, overlap);
+            if (along * proposedSupportA > proposedAlongA * (overlap + along))
+                carry->faceA = f, proposedAlongA = along, proposedSupportA = overlap + along;
+        }
         const double before = exitAlong;
         consider(along, overlap + along, n, [&] { return n; });
         if (exitAlong != before) bestFace = f, bestFaceOfA = true, bestSupport = lowestB.index;
@@ -252,11 +263,22 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
         if (!(along > 0) || along < threshold) continue;
         const Lowest lowestA = !firstOfA && f == firstFace ? firstLowest : lowestAlong(n, verticesA.data(), countA);
         const double overlap = facesB[f].offset + n.dot(pair.bInA.position) - lowestA.value;  // max −n·A − min −n·B
-        if (carry) carry->overlapB[f] = overlap, carry->knownB |= std::uint64_t(1) << f;
+        if (carry) {
+            carry->overlapB[f] = overlap, carry->knownB |= std::uint64_t(1) << f;
+            leastOverlap = std::min(leastOverlap, overlap);
+            if (along * proposedSupportB > proposedAlongB * (overlap + along))
+                carry->faceB = f, proposedAlongB = along, proposedSupportB = overlap + along;
+        }
         const double before = exitAlong;
         consider(along, overlap + along, gaussB[f], [&] { return gaussB[f]; });
         if (exitAlong != before) bestFace = f, bestFaceOfA = false, bestSupport = lowestA.index;
     }
+
+    // Every face's overlap is at least the bound: an evaluated face's is known (to rounding, the
+    // 1e-12 of the size taken off), and a face not evaluated reaches along d less than the threshold
+    // (or not at all), while its h_K is at least the inradii, so its overlap h_K − along exceeds
+    // r_A + r_B − threshold. The overhang check (pipeline.hpp) needs no search where it clears it.
+    if (carry) carry->faceOverlapBound = std::min(leastOverlap, a.inradius() + b.inradius() - threshold) - 1e-12 * size;
 
     // Where the ray's exit point p = d/σ lies inside the best face's facet of K (face ⊕ the other
     // body's support vertex) by more than rounding, that facet is the exit and σ is final: p is then

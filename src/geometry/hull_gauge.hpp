@@ -8,6 +8,7 @@
 #include "geometry/minkowski.hpp"
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 namespace gdc::detail {
@@ -45,6 +46,15 @@ struct HullGaugeCarry {
     bool exitKnown = false;
     Vec3 exitDirection = Vec3::Zero();  // the exit facet's normal, A towards B, not normalised
     double exitOverlap = 0;             // the pair's overlap along exitDirection (in its length's units)
+    /// Each body's face whose facet of K had the largest ratio (m·d)/h_K(m) among that body's faces
+    /// evaluated (−1: none): the face stage 2 proposes for that body's feature (faceIsSelected,
+    /// gauss_map.hpp, proves it or the search runs) — on a resting pair the exit facet's face on its
+    /// side and the nearly parallel face on the other.
+    int faceA = -1, faceB = -1;
+    /// A lower bound of the pair's overlap along every face normal of A and of −B (their searched
+    /// overlaps, rounding included): stage 1's faceOverlapLowerBound, which spares the overhang check
+    /// where it clears half the normal's overlap. −∞ where the enumeration did not reach the faces.
+    double faceOverlapBound = -INFINITY;
     /// B's vertices in A's frame (pair.vertexB(i), bit for bit), as the enumeration placed them.
     std::array<Vec3, kMaxFaces> verticesB;
 };

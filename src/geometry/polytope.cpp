@@ -316,6 +316,13 @@ void Polytope::buildTopology(double size) {
         }
         faceNeighbourhoodOffsets_.push_back(static_cast<int>(faceNeighbourhoods_.size()));
     }
+    const bool boundsOtherFaces = faces_.size() <= static_cast<std::size_t>(kOtherFaceCosineMaxFaces);
+    for (Face& face : faces_) {
+        face.largestOtherCosine = boundsOtherFaces ? -1 : 2;
+        if (boundsOtherFaces)
+            for (const Face& other : faces_)
+                if (&other != &face) face.largestOtherCosine = std::max(face.largestOtherCosine, face.normal.dot(other.normal));
+    }
     for (Face& face : faces_) {
         face.nearestNeighbourCosine = -1;
         for (int i = 0; i < face.count; ++i) {
