@@ -8,13 +8,56 @@ namespace {
 
 using Polygon2 = SmallVector<Vec2, 16>;
 
+// Stage 3's storage, chosen by the features: growable vectors (SmallVector, inline for the common
+// sizes, spilling for large faces and caps), or — for features of at most four points without
+// pieces, a box's — fixed arrays of the worst case, with no capacity check and no spill (the box
+// pair's clip and lift in fixed arrays cost about 130 fewer instructions a face query, callgrind).
+// One algorithm serves both: the functions below are templates on the storage.
+
+// SmallVector's interface (the part stage 3 uses) over a fixed array of N: the caller guarantees
+// that no count exceeds N.
+template <class T, int N>
+class FixedVector {
+public:
+    T* reserve(std::size_t) { return data_; }
+    void setSize(std::size_t count) { size_ = count; }
+    void clear() { size_ = 0; }
+    void push_back(const T& value) { data_[size_++] = value; }
+    std::size_t size() const { return size_; }
+    bool empty() const { return size_ == 0; }
+    T* data() { return data_; }
+    const T* data() const { return data_; }
+    T& operator[](std::size_t i) { return data_[i]; }
+    const T& operator[](std::size_t i) const { return data_[i]; }
+    const T* begin() const { return data_; }
+    const T* end() const { return data_ + size_; }
+
+private:
+    T data_[N];
+    std::size_t size_ = 0;
+};
+
+struct GrowableStorage {
+    using Polygon = Polygon2;
+    using Heights = SmallVector<double, 32>;
+};
+
+// Features of at most four points: a clip by at most four sides at most doubles the subject's ≤ 4
+// points per side, so no region exceeds 64 points (and 2 × 64 heights).
+struct SmallFeatureStorage {
+    static constexpr int kMaxRegion = 64;
+    using Polygon = FixedVector<Vec2, kMaxRegion>;
+    using Heights = FixedVector<double, 2 * kMaxRegion>;
+};
+
 double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // The feature's points in the plane (u, v), a face's loop made counter-clockwise (B's face arrives
 // clockwise), written into the empty `out`; returns its points. Here and below the loops write through a plain pointer
 // with the count in a local (SmallVector::reserve): push_back cost the box–box path 12 %.
+template <class Polygon>
 [[gnu::always_inline]] inline const Vec2* project(const FeatureView& feature, const Vec3& u, const Vec3& v,
-                                                  Polygon2& out) {
+                                                  Polygon& out) {
     const int n = feature.count;
     Vec2* points = out.reserve(n);
     for (int i = 0; i < n; ++i) points[i] = Vec2(feature.points[i].dot(u), feature.points[i].dot(v));
@@ -32,9 +75,10 @@ double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x
 // of each CCW edge of `clip`, in the caller's two buffers in turn (the subject itself is read by
 // the first edge, no copy). Returns the region: one of the buffers, or the subject where no edge
 // of `clip` cut it.
-[[gnu::always_inline]] inline const Polygon2& clipByConvexPolygon(const Polygon2& subject, const Polygon2& clip, double tolerance,
-                                    Polygon2 (&buffers)[2]) {
-    const Polygon2* input = &subject;
+template <class Polygon>
+[[gnu::always_inline]] inline const Polygon& clipByConvexPolygon(const Polygon& subject, const Polygon& clip,
+                                                                 double tolerance, Polygon (&buffers)[2]) {
+    const Polygon* input = &subject;
     const Vec2* corners = clip.data();
     const std::size_t sides = clip.size();
     int written = 0;  // buffers filled so far: the next one is never the one being read
@@ -45,7 +89,7 @@ double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x
         const Vec2 edge = corners[e + 1 == sides ? 0 : e + 1] - a;
         const double length = edge.norm();
         if (!(length > 0)) continue;  // a repeated corner: no half-plane
-        Polygon2& next = buffers[written++ & 1];
+        Polygon& next = buffers[written++ & 1];
         next.clear();
         Vec2* output = next.reserve(2 * n);  // each point adds itself and at most one crossing
         std::size_t count = 0;
@@ -75,8 +119,9 @@ double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x
 }
 
 // The segments' crossing, or their overlap where they are parallel and on one line, into `out`.
+template <class Polygon>
 void intersectSegments(const Vec2& a0, const Vec2& a1, const Vec2& b0, const Vec2& b1, double tolerance,
-                       Polygon2& out) {
+                       Polygon& out) {
     Vec2 da = a1 - a0, db = b1 - b0;
     double denominator = cross2(da, db);
     double la = da.norm(), lb = db.norm();
@@ -103,13 +148,14 @@ bool pointOnSegment(const Vec2& p, const Vec2& a, const Vec2& b, double toleranc
 
 // The intersection of two projected features (the one with more points clips the other; B's
 // when as many), in the caller's buffers; returns the region.
-[[gnu::always_inline]] inline const Polygon2& intersect2d(const Polygon2& first, const Polygon2& second,
-                                                           double tolerance, Polygon2 (&buffers)[2]) {
+template <class Polygon>
+[[gnu::always_inline]] inline const Polygon& intersect2d(const Polygon& first, const Polygon& second,
+                                                         double tolerance, Polygon (&buffers)[2]) {
     const bool firstHasMore = first.size() >= second.size();
-    const Polygon2& a = firstHasMore ? first : second;  // a has at least as many points
-    const Polygon2& b = firstHasMore ? second : first;
+    const Polygon& a = firstHasMore ? first : second;  // a has at least as many points
+    const Polygon& b = firstHasMore ? second : first;
     if (a.size() >= 3) return clipByConvexPolygon(b, a, tolerance, buffers);
-    Polygon2& out = buffers[0];
+    Polygon& out = buffers[0];
     if (a.size() == 2 && b.size() == 2) {
         intersectSegments(a[0], a[1], b[0], b[1], tolerance, out);
     } else if (a.size() == 2) {
@@ -170,8 +216,9 @@ namespace {
 
 // A feature (or one face of a cap) projected onto the contact plane once: its CCW polygon and its
 // lifting back along n.
+template <class Storage>
 struct ProjectedPiece {
-    Polygon2 polygon;
+    typename Storage::Polygon polygon;
     LiftedHeight height;
 
     [[gnu::always_inline]] ProjectedPiece(const FeatureView& piece, const Vec3& u, const Vec3& v, const Vec3& n)
@@ -181,14 +228,17 @@ struct ProjectedPiece {
 // The intersection vertices of two projected pieces, lifted onto both; appended to `out`, skipping
 // points within `tolerance` (in the plane) of one already there when `merge` (pieces of caps
 // share their edges' points).
-[[gnu::always_inline]] inline void intersectPieces(const ProjectedPiece& a, const ProjectedPiece& b, int pieceA, int pieceB, const Vec3& u,
-                     const Vec3& v, const Vec3& normal, double tolerance, double minimumDepth, bool spanRegion,
-                     bool merge, LiftedPoints& out) {
-    Polygon2 buffers[2];
-    const Polygon2& region = intersect2d(a.polygon, b.polygon, tolerance, buffers);
+template <class Storage>
+[[gnu::always_inline]] inline void intersectPieces(const ProjectedPiece<Storage>& a, const ProjectedPiece<Storage>& b,
+                                                   int pieceA, int pieceB, const Vec3& u, const Vec3& v,
+                                                   const Vec3& normal, double tolerance, double minimumDepth,
+                                                   bool spanRegion, bool merge, LiftedPoints& out) {
+    using Polygon = typename Storage::Polygon;
+    Polygon buffers[2];
+    const Polygon& region = intersect2d(a.polygon, b.polygon, tolerance, buffers);
     // Drop near-duplicate consecutive points produced where edges cross at a vertex.
     const double toleranceSquared = tolerance * tolerance;
-    Polygon2 uniqueStorage;
+    Polygon uniqueStorage;
     Vec2* unique = uniqueStorage.reserve(region.size());
     std::size_t count = 0;
     for (const Vec2& p : region)
@@ -214,7 +264,7 @@ struct ProjectedPiece {
     // deepest corners (a cube resting 1° off flat keeps about half of its true contact area). An
     // edge whose far end floats by less than the tolerance adds nothing: its end is kept, and a
     // crossing there would be rounding noise.
-    SmallVector<double, 32> heightStorage;
+    typename Storage::Heights heightStorage;
     double* heightsA = heightStorage.reserve(2 * count);
     double* heightsB = heightsA + count;
     for (std::size_t i = 0; i < count; ++i) heightsA[i] = a.height(unique[i]), heightsB[i] = b.height(unique[i]);
@@ -240,8 +290,8 @@ void intersectFeatures(const FeatureView& a, const FeatureView& b, const Vec3& n
     Vec3 u, v;
     planeBasis(normal, u, v);
     if (a.pieceCount == 0 && b.pieceCount == 0) {
-        intersectPieces(ProjectedPiece(a, u, v, normal), ProjectedPiece(b, u, v, normal), 0, 0, u, v, normal,
-                        tolerance, minimumDepth, spanRegion, false, out);
+        intersectPieces(ProjectedPiece<GrowableStorage>(a, u, v, normal), ProjectedPiece<GrowableStorage>(b, u, v, normal),
+                        0, 0, u, v, normal, tolerance, minimumDepth, spanRegion, false, out);
         return;
     }
     // A cap bends at its inner edges, so its outline alone would miss the deepest point (an inner
@@ -251,7 +301,7 @@ void intersectFeatures(const FeatureView& a, const FeatureView& b, const Vec3& n
     // Points shared by neighbouring faces are kept once. Each face is projected once, and pairs
     // whose projections' bounds do not meet are skipped.
     struct Bounded {
-        ProjectedPiece piece;
+        ProjectedPiece<GrowableStorage> piece;
         Vec2 lower, upper;
         Bounded(const FeatureView& feature, const Vec3& u, const Vec3& v, const Vec3& n) : piece(feature, u, v, n) {
             lower = upper = piece.polygon[0];
@@ -281,120 +331,18 @@ void intersectFeatures(const FeatureView& a, const FeatureView& b, const Vec3& n
 }
 
 // The same intersection for features of at most four points without pieces (a box's vertex, edge
-// or face): every step of the general one above — the projection and its orientation, the
-// Sutherland–Hodgman clip edge by edge with the same slack, the segment and point tests, the
-// de-duplication, the lifting and the region's boundary crossings — with the same expressions on
-// the same numbers in the same order, so the same points to the bit; only the storage differs
-// (fixed arrays sized by the worst case instead of growable vectors, the counts in registers).
+// or face): the same algorithm on fixed arrays (SmallFeatureStorage), so the same points to the bit.
 // The bits matter beyond rounding: the centroid rule's choice among the equal-area triangles of a
 // rectangular region is decided by the clip's last bits (docs/algorithm.md).
 // tests/small_intersection_test.cpp checks both equal, bit for bit, on 10^5 poses of each kind of
 // box pair.
 void intersectSmallFeatures(const FeatureView& a, const FeatureView& b, const Vec3& normal, double tolerance,
                             double minimumDepth, bool spanRegion, LiftedPoints& out) {
-    // A clip by four sides at most doubles the subject's ≤ 4 points per side: 64 is the bound.
-    constexpr int kMaxRegion = 64;
     Vec3 u, v;
     planeBasis(normal, u, v);
-    Vec2 projectedA[4], projectedB[4];
-    auto projectInto = [&](const FeatureView& feature, Vec2* points) {
-        const int n = feature.count;
-        for (int i = 0; i < n; ++i) points[i] = Vec2(feature.points[i].dot(u), feature.points[i].dot(v));
-        if (n >= 3) {
-            double area = cross2(points[n - 1], points[0]);
-            for (int i = 0; i + 1 < n; ++i) area += cross2(points[i], points[i + 1]);
-            if (area < 0)
-                for (int i = 0, j = n - 1; i < j; ++i, --j) std::swap(points[i], points[j]);
-        }
-    };
-    projectInto(a, projectedA);
-    projectInto(b, projectedB);
-    const LiftedHeight heightA(a, projectedA, u, v, normal), heightB(b, projectedB, u, v, normal);
-
-    // intersect2d: the one with more points clips the other (B's when as many).
-    Vec2 buffers[2][kMaxRegion];
-    const Vec2* region = buffers[0];
-    int regionCount = 0;
-    const bool aHasMore = a.count >= b.count;
-    const Vec2* clip = aHasMore ? projectedA : projectedB;
-    const int clipCount = aHasMore ? a.count : b.count;
-    const Vec2* subject = aHasMore ? projectedB : projectedA;
-    const int subjectCount = aHasMore ? b.count : a.count;
-    if (clipCount >= 3) {
-        // clipByConvexPolygon.
-        const Vec2* current = subject;
-        int n = subjectCount;
-        int written = 0;
-        for (int e = 0; e < clipCount && n > 0; ++e) {
-            const Vec2& corner = clip[e];
-            const Vec2 edge = clip[e + 1 == clipCount ? 0 : e + 1] - corner;
-            const double length = edge.norm();
-            if (!(length > 0)) continue;
-            Vec2* output = buffers[written++ & 1];
-            int count = 0;
-            const double slack = tolerance * length;
-            auto distance = [&](const Vec2& p) { return cross2(edge, p - corner); };
-            const double first = distance(current[0]);
-            double dp = first;
-            auto step = [&](const Vec2& p, const Vec2& q, double dq) {
-                if (dp >= -slack) output[count++] = p;
-                if ((dp < -slack && dq > slack) || (dp > slack && dq < -slack))
-                    output[count++] = p + (q - p) * (dp / (dp - dq));
-                dp = dq;
-            };
-            for (int i = 0; i + 1 < n; ++i) step(current[i], current[i + 1], distance(current[i + 1]));
-            if (n >= 3) {
-                step(current[n - 1], current[0], first);
-            } else if (dp >= -slack) {
-                output[count++] = current[n - 1];
-            }
-            current = output, n = count;
-        }
-        region = current, regionCount = n;
-    } else {
-        Polygon2 small;  // at most two points: inline storage
-        if (clipCount == 2 && subjectCount == 2) {
-            intersectSegments(clip[0], clip[1], subject[0], subject[1], tolerance, small);
-        } else if (clipCount == 2) {
-            if (pointOnSegment(subject[0], clip[0], clip[1], tolerance)) small.push_back(subject[0]);
-        } else if ((clip[0] - subject[0]).norm() <= tolerance) {
-            small.push_back(subject[0]);
-        }
-        regionCount = static_cast<int>(small.size());
-        for (int i = 0; i < regionCount; ++i) buffers[0][i] = small[i];
-        region = buffers[0];
-    }
-
-    // intersectPieces without caps (no merging).
-    const double toleranceSquared = tolerance * tolerance;
-    Vec2 unique[kMaxRegion];
-    int count = 0;
-    for (int i = 0; i < regionCount; ++i) {
-        const Vec2& p = region[i];
-        if (count == 0 || (p - unique[count - 1]).squaredNorm() > toleranceSquared) unique[count++] = p;
-    }
-    while (count > 1 && (unique[0] - unique[count - 1]).squaredNorm() <= toleranceSquared) --count;
-
-    std::size_t emitted = out.size();
-    LiftedPoint* points = out.reserve(emitted + 2 * count);
-    auto emit = [&](const Vec2& q, double hA, double hB) {
-        points[emitted++] = {q.x() * u + q.y() * v + 0.5 * (hA + hB) * normal, hA - hB, q, 0, 0};
-    };
-    double heightsA[kMaxRegion], heightsB[kMaxRegion];
-    for (int i = 0; i < count; ++i) heightsA[i] = heightA(unique[i]), heightsB[i] = heightB(unique[i]);
-    const int edges = count >= 3 ? count : (count == 2 ? 1 : 0);
-    const double keepDepth = minimumDepth - tolerance;
-    for (int i = 0; i < count; ++i) {
-        const double depth = heightsA[i] - heightsB[i];
-        if (depth >= keepDepth) emit(unique[i], heightsA[i], heightsB[i]);
-        if (!spanRegion || i >= edges) continue;
-        const int next = i + 1 == count ? 0 : i + 1;
-        const double t = contactBoundaryCrossing(depth, heightsA[next] - heightsB[next], minimumDepth, tolerance);
-        if (std::isnan(t)) continue;
-        const Vec2 crossing = unique[i] + t * (unique[next] - unique[i]);
-        emit(crossing, heightA(crossing), heightB(crossing));
-    }
-    out.setSize(emitted);
+    intersectPieces(ProjectedPiece<SmallFeatureStorage>(a, u, v, normal),
+                    ProjectedPiece<SmallFeatureStorage>(b, u, v, normal), 0, 0, u, v, normal, tolerance, minimumDepth,
+                    spanRegion, false, out);
 }
 
 SmallVector<Vec2, 16> clipConvexPolygon(const Vec2* subject, int n, const Vec2* clip, int sides, double tolerance) {
