@@ -190,11 +190,7 @@ TEST_CASE("box-box path equals the general pipeline on random poses of every kin
     for (int trial = 0; trial < kPoses; ++trial) {
         const Vec3 halfA = randomHalfExtents(random), halfB = randomHalfExtents(random);
         const Polytope a = Polytope::box(halfA), b = Polytope::box(halfB);
-        Settings settings;
-        settings.maxContacts = 1 + static_cast<int>(unit(random) * 8) % 8;
-        settings.margin = unit(random) < 0.5 ? 0.0 : unit(random) * 0.02 * (halfA.norm() + halfB.norm());
-        settings.spanContactRegion = unit(random) < 0.5;
-        if (unit(random) < 0.2) settings.angularTolerance = unit(random) * 0.7;
+        const Settings settings = randomBoxPairSettings(random, halfA.norm() + halfB.norm());
         const BoxPoseKind kind = static_cast<BoxPoseKind>(trial % int(BoxPoseKind::Count));
         ++kinds[int(kind)];
         const Pose relative = boxPoseOfKind(kind, halfA, halfB, settings.angularTolerance, 0.8, random);

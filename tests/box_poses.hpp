@@ -93,4 +93,17 @@ inline Pose boxPoseOfKind(BoxPoseKind kind, const Vec3& halfA, const Vec3& halfB
     }
 }
 
+/// Random settings for a box pair's equality tests: a budget of 1 to 8, a margin up to 2 % of
+/// `size` on half the poses, the region spanned on half, an angular tolerance up to 0.7 rad on a
+/// fifth (the box path's range).
+inline Settings randomBoxPairSettings(std::mt19937& random, double size) {
+    std::uniform_real_distribution<double> unit(0, 1);
+    Settings settings;
+    settings.maxContacts = 1 + static_cast<int>(unit(random) * 8) % 8;
+    settings.margin = unit(random) < 0.5 ? 0.0 : unit(random) * 0.02 * size;
+    settings.spanContactRegion = unit(random) < 0.5;
+    if (unit(random) < 0.2) settings.angularTolerance = unit(random) * 0.7;
+    return settings;
+}
+
 }  // namespace gdc::testing

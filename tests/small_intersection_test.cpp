@@ -38,11 +38,7 @@ TEST_CASE("box-box small intersection: the fixed arrays' manifold equals the gen
         for (int trial = 0; trial < kPosesPerKind; ++trial) {
             const Vec3 halfA = randomHalfExtents(random), halfB = randomHalfExtents(random);
             const Polytope a = Polytope::box(halfA), b = Polytope::box(halfB);
-            Settings settings;
-            settings.maxContacts = 1 + static_cast<int>(unit(random) * 8) % 8;
-            settings.margin = unit(random) < 0.5 ? 0.0 : unit(random) * 0.02 * (halfA.norm() + halfB.norm());
-            settings.spanContactRegion = unit(random) < 0.5;
-            if (unit(random) < 0.2) settings.angularTolerance = unit(random) * 0.7;
+            const Settings settings = randomBoxPairSettings(random, halfA.norm() + halfB.norm());
             const Pose relative = boxPoseOfKind(BoxPoseKind(k), halfA, halfB, settings.angularTolerance, 0.8, random);
             const Pose world{randomRotation(random), Vec3(unit(random), unit(random), unit(random)) * 10};
             const Pose poseB{world.rotation * relative.rotation, world.apply(relative.position)};
