@@ -153,13 +153,9 @@ int collideWithOde(dGeomID o1, int class1, dGeomID o2, int class2, int maxContac
 // geom. Only x: the whole box cost ~11 % of a hull–hull call (tests/ode/adapter_overhead.sh), and
 // other data almost never has the same x extent at every pose a geom takes, so a change is seen
 // at the latest when the geom turns. (matchesAabb checks the whole box where trust is lost.)
+// `hint`: the thread's memo of the geom (geomMemo).
 bool matchesXExtent(const Polytope& hull, const Pose& pose, dGeomID geom, int bruteForceLimit,
-                    detail::ThreadCache& cache) {
-    // Fibonacci hashing of the address (allocators space geoms regularly): the top 8 bits.
-    static_assert(detail::ThreadCache::kAabbHints == 256, "the hash takes the top 8 bits");
-    const auto address = static_cast<std::uint64_t>(reinterpret_cast<std::uintptr_t>(geom));
-    detail::ThreadCache::AabbHint& hint = cache.aabbHints[(address * 0x9E3779B97F4A7C15ull) >> 56];
-    if (hint.geom != geom) hint.geom = geom, hint.lower = -1, hint.upper = -1, hint.verifiedHull = nullptr;
+                    detail::ThreadCache::GeomMemo& hint) {
     dReal box[6];
     dGeomGetAABB(geom, box);
     // Everything the check below reads besides the hull: compared by their bytes with the inputs of
@@ -194,12 +190,13 @@ bool matchesXExtent(const Polytope& hull, const Pose& pose, dGeomID geom, int br
 // dGeomSetConvex (its AABB, which ODE computes from the points it holds, no longer matches the hull).
 [[gnu::noinline]] const Polytope* knownHull(dGeomID geom, const Pose& pose, const Settings& settings,
                                             detail::ThreadCache& cache, bool& unregistered) {
-    const Polytope* hull = detail::borrowedConvex(cache, geom);
+    detail::ThreadCache::GeomMemo& memo = detail::geomMemo(cache, geom);  // one search for both memos
+    const Polytope* hull = detail::borrowedConvex(memo, geom);
     if (!hull) {
         unregistered = true;
         return nullptr;
     }
-    if (!matchesXExtent(*hull, pose, geom, settings.bruteForceSupportLimit, cache)) {
+    if (!matchesXExtent(*hull, pose, geom, settings.bruteForceSupportLimit, memo)) {
         // A non-finite pose makes every AABB differ: the core reports it ("not finite").
         if (!pose.isFinite()) return hull;
         reportSetConvex();
