@@ -258,15 +258,18 @@ struct CacheSource {
 // The core query, through the pair's cache when there is one. The answer by reference — the
 // cache's own manifold, or `storage` — so that a repeated answer is read where it lies (a
 // Manifold's copies were a third of a repeated answer's cost, tests/ode/adapter_overhead.sh).
+// A fresh answer goes to `storage`, one the pair cache carries along with the bodies to `carried`
+// (gdc::collideInto writes only that there): every other answer is one the core computed, now or
+// when it was cached.
 template <class Query, class CachedQuery>
-const Manifold& queryThrough(const CacheSource& source, dGeomID o1, dGeomID o2, Manifold& storage, Query query,
-                             CachedQuery cachedQuery) {
+const Manifold& queryThrough(const CacheSource& source, dGeomID o1, dGeomID o2, Manifold& storage, Manifold& carried,
+                             Query query, CachedQuery cachedQuery) {
     PairCache* cache = source.find(o1, o2);
     if (!cache) {
         query(storage);
         return storage;
     }
-    const Manifold& manifold = cachedQuery(*cache, storage);
+    const Manifold& manifold = cachedQuery(*cache, carried);
     source.count(cache);
     return manifold;
 }
@@ -275,9 +278,10 @@ const Manifold& queryThrough(const CacheSource& source, dGeomID o1, dGeomID o2, 
 // order that makes dWorldQuickStep meet them as `order` says. `flip`: the core's A is o2 (its
 // normal then already points from o2 into o1).
 // `checkedFinite`: the core's own answer (not one a pair cache carried), whose every position the
-// core has checked finite (it throws where a contact overflows), so the test below would pass.
+// core has checked finite (every answer it computes is written by emitManifold or the plane
+// contacts, which throw where a contact overflows), so the test below would pass.
 int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int maxContacts, ContactOrder order,
-                  dGeomID o1, dGeomID o2, dContactGeom* contact, int skip, bool checkedFinite = false) {
+                  dGeomID o1, dGeomID o2, dContactGeom* contact, int skip, bool checkedFinite) {
     // The core's normal points from A towards B; ODE's from o2 into o1.
     Vec3 normal = flip ? manifold.normal : Vec3(-manifold.normal);
     // norm() is the square root of squaredNorm(): where that is exactly 1 (the common case) the
@@ -464,15 +468,16 @@ decltype(auto) collideLimited(const Settings& settings, int maxContacts, Collide
     const HalfSpace halfSpace{plane.unit, plane.raw[3]};
     const Manifold& manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) -> const Manifold& {
         return queryThrough(
-            pairCache, o1, o2, cache.scratch, [&](Manifold& out) { queryInto(polytope, pose, plane, halfSpace, pairSettings, cache, out); },
+            pairCache, o1, o2, cache.scratch, cache.carried,
+            [&](Manifold& out) { queryInto(polytope, pose, plane, halfSpace, pairSettings, cache, out); },
             [&](PairCache& entry, Manifold& carried) -> const Manifold& {
                 return gdc::collideInto(polytope, pose, halfSpace, pairSettings, entry, carried);
             });
     });
     if (manifold.empty()) return 0;
-    // The half-space query's answer, straight from the core (cache.scratch), is checked finite.
+    // The core's own answer is checked finite; a carried one (in cache.carried) is not.
     return writeContacts(manifold, planeFirst, polytope.radius(), maxContacts, settings.contactOrder, o1, o2, contact,
-                         skip, &manifold == &cache.scratch);
+                         skip, &manifold != &cache.carried);
 }
 
 [[gnu::always_inline]] inline int collidePolytopes(const detail::ResolvedPair& pair, int maxContacts, dContactGeom* contact, int skip,
@@ -485,7 +490,7 @@ decltype(auto) collideLimited(const Settings& settings, int maxContacts, Collide
     const bool swapped = pair.flip;
     const Manifold& manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) -> const Manifold& {
         return queryThrough(
-            pairCache, o1, o2, cache.scratch,
+            pairCache, o1, o2, cache.scratch, cache.carried,
             [&](Manifold& out) {
                 swapped ? queryInto(polytope2, pose2, polytope1, pose1, pairSettings, out)
                         : queryInto(polytope1, pose1, polytope2, pose2, pairSettings, out);
@@ -496,8 +501,9 @@ decltype(auto) collideLimited(const Settings& settings, int maxContacts, Collide
             });
     });
     if (manifold.empty()) return 0;
+    // The core's own answer (box–box or general) is checked finite, as the half-space one.
     return writeContacts(manifold, swapped, polytope1.radius() + polytope2.radius(), maxContacts,
-                         settings.contactOrder, o1, o2, contact, skip);
+                         settings.contactOrder, o1, o2, contact, skip, &manifold != &cache.carried);
 }
 
 [[gnu::always_inline]] inline int collideResolvedPair(const detail::ResolvedPair& pair, int maxContacts, dContactGeom* contact, int skip,

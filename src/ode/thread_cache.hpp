@@ -103,6 +103,9 @@ struct ThreadCache {
     // Where collide() keeps an answer that is not in a pair cache (no cache, or a carried one)
     // until it is written out: one per thread, so that a call constructs no 0.6 KB Manifold.
     Manifold scratch;
+    // Where a pair cache's answer carried along with the bodies is written: apart from scratch, so
+    // that writeContacts knows the core's own answers (checked finite) by their address.
+    Manifold carried;
 };
 
 /// The thread's memo of `geom` (ThreadCache::GeomMemo): the one it holds, or else a fresh one for
