@@ -153,13 +153,9 @@ int collideWithOde(dGeomID o1, int class1, dGeomID o2, int class2, int maxContac
 // geom. Only x: the whole box cost ~11 % of a hull–hull call (tests/ode/adapter_overhead.sh), and
 // other data almost never has the same x extent at every pose a geom takes, so a change is seen
 // at the latest when the geom turns. (matchesAabb checks the whole box where trust is lost.)
+// `hint`: the thread's memo of the geom (geomMemo).
 bool matchesXExtent(const Polytope& hull, const Pose& pose, dGeomID geom, int bruteForceLimit,
-                    detail::ThreadCache& cache) {
-    // Fibonacci hashing of the address (allocators space geoms regularly): the top 8 bits.
-    static_assert(detail::ThreadCache::kAabbHints == 256, "the hash takes the top 8 bits");
-    const auto address = static_cast<std::uint64_t>(reinterpret_cast<std::uintptr_t>(geom));
-    detail::ThreadCache::AabbHint& hint = cache.aabbHints[(address * 0x9E3779B97F4A7C15ull) >> 56];
-    if (hint.geom != geom) hint.geom = geom, hint.lower = -1, hint.upper = -1, hint.verifiedHull = nullptr;
+                    detail::ThreadCache::GeomMemo& hint) {
     dReal box[6];
     dGeomGetAABB(geom, box);
     // Everything the check below reads besides the hull: compared by their bytes with the inputs of
@@ -194,12 +190,13 @@ bool matchesXExtent(const Polytope& hull, const Pose& pose, dGeomID geom, int br
 // dGeomSetConvex (its AABB, which ODE computes from the points it holds, no longer matches the hull).
 [[gnu::noinline]] const Polytope* knownHull(dGeomID geom, const Pose& pose, const Settings& settings,
                                             detail::ThreadCache& cache, bool& unregistered) {
-    const Polytope* hull = detail::borrowedConvex(cache, geom);
+    detail::ThreadCache::GeomMemo& memo = detail::geomMemo(cache, geom);  // one search for both memos
+    const Polytope* hull = detail::borrowedConvex(memo, geom);
     if (!hull) {
         unregistered = true;
         return nullptr;
     }
-    if (!matchesXExtent(*hull, pose, geom, settings.bruteForceSupportLimit, cache)) {
+    if (!matchesXExtent(*hull, pose, geom, settings.bruteForceSupportLimit, memo)) {
         // A non-finite pose makes every AABB differ: the core reports it ("not finite").
         if (!pose.isFinite()) return hull;
         reportSetConvex();
@@ -261,15 +258,18 @@ struct CacheSource {
 // The core query, through the pair's cache when there is one. The answer by reference — the
 // cache's own manifold, or `storage` — so that a repeated answer is read where it lies (a
 // Manifold's copies were a third of a repeated answer's cost, tests/ode/adapter_overhead.sh).
+// A fresh answer goes to `storage`, one the pair cache carries along with the bodies to `carried`
+// (gdc::collideInto writes only that there): every other answer is one the core computed, now or
+// when it was cached.
 template <class Query, class CachedQuery>
-const Manifold& queryThrough(const CacheSource& source, dGeomID o1, dGeomID o2, Manifold& storage, Query query,
-                             CachedQuery cachedQuery) {
+const Manifold& queryThrough(const CacheSource& source, dGeomID o1, dGeomID o2, Manifold& storage, Manifold& carried,
+                             Query query, CachedQuery cachedQuery) {
     PairCache* cache = source.find(o1, o2);
     if (!cache) {
         query(storage);
         return storage;
     }
-    const Manifold& manifold = cachedQuery(*cache, storage);
+    const Manifold& manifold = cachedQuery(*cache, carried);
     source.count(cache);
     return manifold;
 }
@@ -278,9 +278,10 @@ const Manifold& queryThrough(const CacheSource& source, dGeomID o1, dGeomID o2, 
 // order that makes dWorldQuickStep meet them as `order` says. `flip`: the core's A is o2 (its
 // normal then already points from o2 into o1).
 // `checkedFinite`: the core's own answer (not one a pair cache carried), whose every position the
-// core has checked finite (it throws where a contact overflows), so the test below would pass.
+// core has checked finite (every answer it computes is written by emitManifold or the plane
+// contacts, which throw where a contact overflows), so the test below would pass.
 int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int maxContacts, ContactOrder order,
-                  dGeomID o1, dGeomID o2, dContactGeom* contact, int skip, bool checkedFinite = false) {
+                  dGeomID o1, dGeomID o2, dContactGeom* contact, int skip, bool checkedFinite) {
     // The core's normal points from A towards B; ODE's from o2 into o1.
     Vec3 normal = flip ? manifold.normal : Vec3(-manifold.normal);
     // norm() is the square root of squaredNorm(): where that is exactly 1 (the common case) the
@@ -467,15 +468,16 @@ decltype(auto) collideLimited(const Settings& settings, int maxContacts, Collide
     const HalfSpace halfSpace{plane.unit, plane.raw[3]};
     const Manifold& manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) -> const Manifold& {
         return queryThrough(
-            pairCache, o1, o2, cache.scratch, [&](Manifold& out) { queryInto(polytope, pose, plane, halfSpace, pairSettings, cache, out); },
+            pairCache, o1, o2, cache.scratch, cache.carried,
+            [&](Manifold& out) { queryInto(polytope, pose, plane, halfSpace, pairSettings, cache, out); },
             [&](PairCache& entry, Manifold& carried) -> const Manifold& {
                 return gdc::collideInto(polytope, pose, halfSpace, pairSettings, entry, carried);
             });
     });
     if (manifold.empty()) return 0;
-    // The half-space query's answer, straight from the core (cache.scratch), is checked finite.
+    // The core's own answer is checked finite; a carried one (in cache.carried) is not.
     return writeContacts(manifold, planeFirst, polytope.radius(), maxContacts, settings.contactOrder, o1, o2, contact,
-                         skip, &manifold == &cache.scratch);
+                         skip, &manifold != &cache.carried);
 }
 
 [[gnu::always_inline]] inline int collidePolytopes(const detail::ResolvedPair& pair, int maxContacts, dContactGeom* contact, int skip,
@@ -488,7 +490,7 @@ decltype(auto) collideLimited(const Settings& settings, int maxContacts, Collide
     const bool swapped = pair.flip;
     const Manifold& manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) -> const Manifold& {
         return queryThrough(
-            pairCache, o1, o2, cache.scratch,
+            pairCache, o1, o2, cache.scratch, cache.carried,
             [&](Manifold& out) {
                 swapped ? queryInto(polytope2, pose2, polytope1, pose1, pairSettings, out)
                         : queryInto(polytope1, pose1, polytope2, pose2, pairSettings, out);
@@ -499,8 +501,9 @@ decltype(auto) collideLimited(const Settings& settings, int maxContacts, Collide
             });
     });
     if (manifold.empty()) return 0;
+    // The core's own answer (box–box or general) is checked finite, as the half-space one.
     return writeContacts(manifold, swapped, polytope1.radius() + polytope2.radius(), maxContacts,
-                         settings.contactOrder, o1, o2, contact, skip);
+                         settings.contactOrder, o1, o2, contact, skip, &manifold != &cache.carried);
 }
 
 [[gnu::always_inline]] inline int collideResolvedPair(const detail::ResolvedPair& pair, int maxContacts, dContactGeom* contact, int skip,

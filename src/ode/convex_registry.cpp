@@ -122,7 +122,7 @@ std::shared_ptr<const Polytope> registeredConvex(dGeomID geom) {
     return record->polytope;
 }
 
-const Polytope* borrowedConvex(ThreadCache& cache, dGeomID geom) {
+const Polytope* borrowedConvex(ThreadCache::GeomMemo& memo, dGeomID geom) {
     // With another free handler in front of ours, frees go unseen and an address may now hold
     // another geom: every lookup then takes registeredConvex's checked path.
     // (The registry keeps holding the hull after the temporary shared_ptr is gone.)
@@ -130,11 +130,8 @@ const Polytope* borrowedConvex(ThreadCache& cache, dGeomID geom) {
     // The memo: a trusted hull found for this address while no convex was forgotten since. The
     // geom is alive (it is being collided), and the registered geom at this address could only
     // have been replaced after a free the hook saw, which advances the generation.
-    static_assert(ThreadCache::kHullMemos == 256, "the hash takes the top 8 bits");
-    const auto address = static_cast<std::uint64_t>(reinterpret_cast<std::uintptr_t>(geom));
-    ThreadCache::HullMemo& memo = cache.hulls[(address * 0x9E3779B97F4A7C15ull) >> 56];  // Fibonacci hashing
     const std::uint64_t generation = convexesForgotten.load(std::memory_order_acquire);
-    if (memo.geom == geom && memo.generation == generation) return memo.hull;
+    if (memo.hull && memo.hullGeneration == generation) return memo.hull;
     Registry& r = registry();
     if (r.count.load(std::memory_order_relaxed) == 0) return nullptr;
     const Polytope* hull;
@@ -147,7 +144,8 @@ const Polytope* borrowedConvex(ThreadCache& cache, dGeomID geom) {
         trusted = found->second.trusted;
     }
     if (!trusted) return matchesGeom(*hull, geom) ? hull : nullptr;  // checked each time
-    memo = ThreadCache::HullMemo{geom, hull, generation};  // the generation read before the lookup
+    memo.hull = hull;
+    memo.hullGeneration = generation;  // the generation read before the lookup
     return hull;
 }
 

@@ -42,8 +42,9 @@ std::shared_ptr<const Polytope> registeredConvex(dGeomID geom);
 /// The hull of a createConvex geom for collide(): borrowed, not shared. It stays valid while the
 /// geom lives, since a hull is released only when ODE frees its geom, and a geom may not be
 /// destroyed while it is being collided. nullptr for a geom gdcontact did not create.
-/// Answered from the thread's memo (ThreadCache::hulls) when it can be, else from the registry.
-const Polytope* borrowedConvex(ThreadCache& cache, dGeomID geom);
+/// Answered from the thread's memo of the geom (`memo`, geomMemo(cache, geom)) when it can be,
+/// else from the registry.
+const Polytope* borrowedConvex(ThreadCache::GeomMemo& memo, dGeomID geom);
 
 /// Number of live registered convex geoms.
 std::size_t registeredConvexCount();
@@ -57,7 +58,7 @@ void forgetConvex(const void* address) noexcept;
 void distrustRegisteredConvexes();
 
 /// Advanced whenever a registered convex is forgotten (its geom was freed) or the registered
-/// convexes are distrusted: the per-thread memos (ThreadCache::HullMemo, AabbHint) taken before
+/// convexes are distrusted: the per-thread memos (ThreadCache::GeomMemo) taken before
 /// are void.
 extern std::atomic<std::uint64_t> convexesForgotten;
 

@@ -55,36 +55,40 @@ struct ThreadCache {
     PlaneSlot planes[kPlaneSlots];
     int lastPlane = 0;  // also the next slot to refill (round robin)
 
-    // Where the x-extent check of a convex's AABB (collide.cpp) found the hull's extreme vertices
-    // last time, per geom (direct-mapped by address): the next check climbs from there, a few
-    // steps for a body that moved a little. Only a hint: a stale entry costs a longer climb.
-    // With it, the inputs of the last check that passed (the hull, the bytes of the pose's first
-    // rotation row and position, and of the AABB's x extent): the check is a function of exactly
-    // these, so the same inputs pass again without the support queries — a geom in several pairs
-    // of a step is checked once (verifiedHull null: nothing verified). Valid only while no
-    // registered convex has been forgotten since (convexesForgotten): a new geom and hull may take
-    // a freed one's addresses.
-    struct AabbHint {
+    // What this thread remembers of a convex geom (by address), both looked up by one search of
+    // its set (geomMemo): before, two direct-mapped tables of 256 entries each took a hash and a
+    // compare per geom, and two geoms whose addresses hashed alike evicted each other's entries on
+    // every call — about 10 % of the benchmark's convex calls missed and paid the two support
+    // queries again (callgrind, issue 23). Four-way set-associative, the least recently used
+    // evicted: the same 256 entries, and five geoms must share a set before one misses.
+    struct GeomMemo {
         const void* geom = nullptr;
+        std::uint64_t lastUse = 0;  // geomClock when last looked up
+        // The hull the registry gave for the geom, while no registered convex has been forgotten
+        // or distrusted since (convexesForgotten, hullGeneration): then the geom at that address is
+        // still the one registered with that hull, and collide() takes no lock
+        // (convex_registry.cpp). nullptr: none remembered.
+        const Polytope* hull = nullptr;
+        std::uint64_t hullGeneration = 0;
+        // Where the x-extent check of the geom's AABB (collide.cpp) found the hull's extreme
+        // vertices last time: the next check climbs from there, a few steps for a body that moved a
+        // little. Only a hint: a stale entry costs a longer climb (-1: none).
         int lower = -1;
         int upper = -1;
+        // The inputs of the last check that passed (the hull, the bytes of the pose's first
+        // rotation row and position, and of the AABB's x extent): the check is a function of
+        // exactly these, so the same inputs pass again without the support queries — a geom in
+        // several pairs of a step is checked once (verifiedHull null: nothing verified). Valid only
+        // while no registered convex has been forgotten since (convexesForgotten): a new geom and
+        // hull may take a freed one's addresses.
         const Polytope* verifiedHull = nullptr;
         std::uint64_t verifiedGeneration = 0;
         double verifiedInputs[8] = {};
     };
-    static constexpr int kAabbHints = 256;  // 22 KB a thread; at 64, 16 geoms already evicted each other
-    AabbHint aabbHints[kAabbHints];
-
-    // The hull the registry gave for a geom (direct-mapped by address), while no registered convex
-    // has been forgotten or distrusted since (convexesForgotten): then the geom at that address is
-    // still the one registered with that hull, and collide() takes no lock (convex_registry.cpp).
-    struct HullMemo {
-        const void* geom = nullptr;
-        const Polytope* hull = nullptr;
-        std::uint64_t generation = 0;
-    };
-    static constexpr int kHullMemos = 256;
-    HullMemo hulls[kHullMemos];
+    static constexpr int kGeomMemoSets = 64;
+    static constexpr int kGeomMemoWays = 4;
+    GeomMemo geomMemos[kGeomMemoSets][kGeomMemoWays];  // 26 KB a thread
+    std::uint64_t geomClock = 0;
 
     std::uint64_t settingsGeneration = 0;  // 0: never copied
     Settings settings;
@@ -99,7 +103,35 @@ struct ThreadCache {
     // Where collide() keeps an answer that is not in a pair cache (no cache, or a carried one)
     // until it is written out: one per thread, so that a call constructs no 0.6 KB Manifold.
     Manifold scratch;
+    // Where a pair cache's answer carried along with the bodies is written: apart from scratch, so
+    // that writeContacts knows the core's own answers (checked finite) by their address.
+    Manifold carried;
 };
+
+/// The thread's memo of `geom` (ThreadCache::GeomMemo): the one it holds, or else a fresh one for
+/// `geom` in place of its set's least recently used. Fibonacci hashing of the address (allocators
+/// space geoms regularly), its top 6 bits, picks the set.
+inline ThreadCache::GeomMemo& geomMemo(ThreadCache& cache, const void* geom) {
+    static_assert(ThreadCache::kGeomMemoSets == 64 && ThreadCache::kGeomMemoWays == 4,
+                  "the hash takes the top 6 bits; the search looks at four ways");
+    const auto address = static_cast<std::uint64_t>(reinterpret_cast<std::uintptr_t>(geom));
+    ThreadCache::GeomMemo* ways = cache.geomMemos[(address * 0x9E3779B97F4A7C15ull) >> 58];
+    const std::uint64_t now = ++cache.geomClock;
+    ThreadCache::GeomMemo* memo = ways[0].geom == geom   ? &ways[0]
+                                  : ways[1].geom == geom ? &ways[1]
+                                  : ways[2].geom == geom ? &ways[2]
+                                  : ways[3].geom == geom ? &ways[3]
+                                                         : nullptr;
+    if (!memo) {
+        memo = &ways[0];
+        for (int i = 1; i < ThreadCache::kGeomMemoWays; ++i)
+            if (ways[i].lastUse < memo->lastUse) memo = &ways[i];
+        *memo = ThreadCache::GeomMemo{};
+        memo->geom = geom;
+    }
+    memo->lastUse = now;
+    return *memo;
+}
 
 inline ThreadCache& threadCache() {
     thread_local ThreadCache cache;

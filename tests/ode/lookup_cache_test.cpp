@@ -355,6 +355,66 @@ TEST_CASE("thousands of createConvex geoms each collide with their own hull, thr
     dGeomDestroy(ground);
 }
 
+// A thread remembers each convex geom it collided (its hull and where its AABB check ended) in a
+// set-associative table of 64 sets of 4 (ThreadCache::GeomMemo): more geoms than that, collided in
+// orders that evict each other (forwards, backwards, strided), must each still find their own hull,
+// and a geom given other data through dGeomSetConvex must be seen whether its memo is warm (collided
+// just before) or was evicted since.
+TEST_CASE("hundreds of convex geoms collided in evicting orders keep their own hull, and dGeomSetConvex is seen warm or evicted",
+          "[ode][cache][lifetime]") {
+    OdeSession session;
+    dGeomID ground = dCreatePlane(0, 0, 0, 1, 0);
+    constexpr int kGeoms = 700;  // ~11 a set
+    std::vector<dGeomID> geoms;
+    for (int i = 0; i < kGeoms; ++i) geoms.push_back(standingCube(i));
+    int wrong = 0;
+    for (int round = 0; round < 3; ++round) {
+        for (int i = 0; i < kGeoms; ++i) wrong += !usesItsOwnHull(geoms[i], i, ground);
+        for (int i = kGeoms - 1; i >= 0; --i) wrong += !usesItsOwnHull(geoms[i], i, ground);
+        for (int i = 0; i < kGeoms; ++i) {
+            const int k = (i * 257) % kGeoms;
+            wrong += !usesItsOwnHull(geoms[k], k, ground);
+            wrong += !usesItsOwnHull(geoms[k], k, ground);  // at once again: a warm memo
+        }
+    }
+    CHECK(wrong == 0);
+
+    // Other data for two geoms: a cube of half size 0.3 (0.1 into the ground, where the
+    // registered hulls reach 0.05 and a little more). The arrays must outlive the geoms.
+    const std::vector<dReal> planes{1, 0, 0, 0.3, 0, 1, 0, 0.3, 0, 0, 1, 0.3, -1, 0, 0, 0.3, 0, -1, 0, 0.3, 0, 0, -1, 0.3};
+    const std::vector<dReal> points{0.3, 0.3, 0.3,  -0.3, 0.3, 0.3,  0.3, -0.3, 0.3,  -0.3, -0.3, 0.3,
+                                    0.3, 0.3, -0.3, -0.3, 0.3, -0.3, 0.3, -0.3, -0.3, -0.3, -0.3, -0.3};
+    const std::vector<unsigned> polygons{4, 0, 2, 6, 4, 4, 1, 0, 4, 5, 4, 0, 1, 3, 2,
+                                         4, 3, 1, 5, 7, 4, 2, 3, 7, 6, 4, 5, 4, 6, 7};
+    const int warm = 123, evicted = 456;
+    auto giveOtherData = [&](dGeomID geom) {
+        dGeomSetConvex(geom, planes.data(), 6, points.data(), 8, polygons.data());
+        // ODE 0.16.2's dGeomSetConvex does not mark the AABB stale; the next move does.
+        const dReal* p = dGeomGetPosition(geom);
+        dGeomSetPosition(geom, p[0], p[1], p[2]);
+        dGeomGetPosition(geom);
+    };
+    auto seesOtherData = [&](int k) {
+        const std::vector<dContactGeom> contacts = collideDirectly(geoms[k], ground);
+        return !contacts.empty() && std::abs(deepest(contacts) - (0.3 - kCentre)) < 1e-9;  // ODE's collider
+    };
+    REQUIRE(usesItsOwnHull(geoms[warm], warm, ground));  // its memo verified at this very pose
+    giveOtherData(geoms[warm]);
+    CHECK(seesOtherData(warm));
+    REQUIRE(usesItsOwnHull(geoms[evicted], evicted, ground));
+    for (int i = 0; i < kGeoms; ++i)  // evicts `evicted`'s memo
+        if (i != warm && i != evicted) usesItsOwnHull(geoms[i], i, ground);
+    giveOtherData(geoms[evicted]);
+    CHECK(seesOtherData(evicted));
+    CHECK(seesOtherData(warm));  // and still, a call later
+    wrong = 0;
+    for (int i = 0; i < kGeoms; ++i)
+        if (i != warm && i != evicted) wrong += !usesItsOwnHull(geoms[i], i, ground);
+    CHECK(wrong == 0);
+    for (dGeomID geom : geoms) dGeomDestroy(geom);
+    dGeomDestroy(ground);
+}
+
 TEST_CASE("collide from several threads finds every hull while another thread creates and destroys hulls",
           "[ode][threads][cache]") {
     OdeSession session;
