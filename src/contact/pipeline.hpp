@@ -181,8 +181,11 @@ template <class Hooks>
     // A caller that orders the points by depth itself (OrderFlag AmongEqualDepths) gets them in
     // lift order where every point is kept and no two depths are equal: the ranking could only
     // have ordered them (emitInLiftOrder).
+    // (Its first condition here as well: a reduced face, the common case of many points, makes no call.)
     if constexpr (OrderFlag<Hooks>::value == ImportanceOrder::AmongEqualDepths)
-        if (emitInLiftOrder(kept, normal, poseA, settings, manifold)) return Composed::Done;
+        if (static_cast<int>(kept.size()) <= settings.maxContacts &&
+            emitInLiftOrder(kept, normal, poseA, settings, manifold))
+            return Composed::Done;
     const Vec3 centroids[2] = {pair.centreA, pair.centreB};
     emitManifold(kept, normal, poseA, settings, tolerance, centroids, 2, manifold);
     return Composed::Done;
