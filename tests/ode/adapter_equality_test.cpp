@@ -7,8 +7,9 @@
 // box–box and box–plane answers in place (detail::collideBoxBoxInto, collideHalfSpaceInto) and
 // skips the normal's square root where its squared length is exactly 1; this pins those shortcuts
 // to gdc::collide's own path — and the half-space path's face points, which the adapter has the
-// core rank only among equal depths (resting poses with exact ties among them). The largest
-// difference found is printed (and required to be 0).
+// core rank only among equal depths (resting poses with exact ties among them), and likewise the
+// box–box and general pair paths' points (stacked boxes and box-shaped hulls, ties to the bit).
+// The largest difference found is printed (and required to be 0).
 #include <gdcontact/ode.hpp>
 
 #include "ode_support.hpp"
