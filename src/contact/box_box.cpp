@@ -147,10 +147,18 @@ struct BoxPairHooks {
 
 namespace {
 
-template <bool SmallFeatures>
+// The box pair's hooks for a caller that needs the points only in `order` (pipeline.hpp, OrderFlag).
+template <ImportanceOrder order>
+struct BoxPairHooksIn : BoxPairHooks<true> {
+    static constexpr ImportanceOrder kOrder = order;
+    explicit BoxPairHooksIn(const Settings& settings) : BoxPairHooks<true>(settings) {}
+};
+
+// The delegated rare cases keep the full ranking (collideGeneral): the same answer either way.
+template <class Hooks>
 void collideBoxBoxWith(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
                        const Settings& settings, Manifold& manifold) {
-    BoxPairHooks<SmallFeatures> hooks(settings);
+    Hooks hooks(settings);
     if (composeStages(hooks, a, poseA, b, poseB, settings, manifold) == Composed::Delegate)
         manifold.assignUsed(collideGeneral(a, poseA, b, poseB, settings));
 }
@@ -159,14 +167,22 @@ void collideBoxBoxWith(const Polytope& a, const Pose& poseA, const Polytope& b, 
 
 void collideBoxBoxInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
                        const Settings& settings, Manifold& manifold) {
-    collideBoxBoxWith<true>(a, poseA, b, poseB, settings, manifold);
+    collideBoxBoxWith<BoxPairHooks<true>>(a, poseA, b, poseB, settings, manifold);
 }
+
+template <ImportanceOrder order>
+void collideBoxBoxInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
+                       const Settings& settings, Manifold& manifold) {
+    collideBoxBoxWith<BoxPairHooksIn<order>>(a, poseA, b, poseB, settings, manifold);
+}
+template void collideBoxBoxInto<ImportanceOrder::AmongEqualDepths>(const Polytope&, const Pose&, const Polytope&,
+                                                                   const Pose&, const Settings&, Manifold&);
 
 Manifold collideBoxBox(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
                        const Settings& settings, bool smallIntersection) {
     Manifold manifold;
     if (smallIntersection) collideBoxBoxInto(a, poseA, b, poseB, settings, manifold);
-    else collideBoxBoxWith<false>(a, poseA, b, poseB, settings, manifold);
+    else collideBoxBoxWith<BoxPairHooks<false>>(a, poseA, b, poseB, settings, manifold);
     return manifold;
 }
 

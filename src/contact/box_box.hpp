@@ -3,6 +3,7 @@
 
 #include <gdcontact/collide.hpp>
 
+#include "contact/half_space.hpp"
 #include "geometry/box_shape.hpp"
 #include "geometry/growth_distance.hpp"
 
@@ -29,6 +30,13 @@ Manifold collideBoxBox(const Polytope& a, const Pose& poseA, const Polytope& b, 
 /// collideBoxBox written into `out` (normal, pointCount, points [0, pointCount), features), for a
 /// caller that keeps its answer in a Manifold of its own (the ODE adapter): no 0.5 KB Manifold
 /// made and copied per call. On a throw `out` is unspecified.
+void collideBoxBoxInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
+                       const Settings& settings, Manifold& out);
+
+/// The same with the points in `order` (half_space.hpp's ImportanceOrder; instantiated for
+/// AmongEqualDepths, the ODE adapter's pair path: lift order where every point is kept and no two
+/// depths are equal, collide_general.hpp's emitInLiftOrder).
+template <ImportanceOrder order>
 void collideBoxBoxInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
                        const Settings& settings, Manifold& out);
 

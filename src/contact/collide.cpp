@@ -437,6 +437,30 @@ void emitManifold(const LiftedPoints& points, const Vec3& normal, const Pose& co
         throw InvalidInput("the contact overflows double precision (coordinates or offsets near 1e308)");
 }
 
+bool emitInLiftOrder(const LiftedPoints& points, const Vec3& normal, const Pose& commonToWorld, const Settings& settings,
+                     Manifold& manifold) {
+    // emitManifold's ranking keeps every point where there are at most maxCount (rankContacts);
+    // then it only orders them.
+    const int maxCount = std::max(1, std::min(settings.maxContacts, kMaxManifoldPoints));
+    const int total = static_cast<int>(points.size());
+    if (total > maxCount) return false;
+    for (int i = 0; i < total; ++i)
+        for (int j = i + 1; j < total; ++j)
+            if (points[i].depth == points[j].depth) return false;
+    // emitManifold's writing, expression for expression (the same bits).
+    manifold.normal = commonToWorld.rotation * normal;
+    manifold.pointCount = total;
+    double nonFinite = 0;
+    for (int i = 0; i < total; ++i) {
+        const LiftedPoint& point = points[i];
+        manifold.points[i] = {commonToWorld.apply(point.position), point.depth};
+        nonFinite += (manifold.points[i].position * 0.0).sum() + point.depth * 0.0;
+    }
+    if (!(nonFinite == 0))
+        throw InvalidInput("the contact overflows double precision (coordinates or offsets near 1e308)");
+    return true;
+}
+
 namespace {
 
 // Any two polytopes' hooks for the one composition (pipeline.hpp): the general pipeline, the
@@ -650,6 +674,24 @@ Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b,
     composeStages(hooks, a, poseA, b, poseB, settings, manifold);  // never delegates
     return manifold;
 }
+
+namespace {
+// The general hooks (default paths) for a caller that needs the points only in `order`.
+template <ImportanceOrder order>
+struct GeneralPairHooksIn : GeneralPairHooks {
+    static constexpr ImportanceOrder kOrder = order;
+    explicit GeneralPairHooksIn(const Settings& settings) : GeneralPairHooks(settings, false, true, true, true) {}
+};
+}  // namespace
+
+template <ImportanceOrder order>
+void collideGeneralInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
+                        const Settings& settings, Manifold& out) {
+    GeneralPairHooksIn<order> hooks(settings);
+    composeStages(hooks, a, poseA, b, poseB, settings, out);  // never delegates
+}
+template void collideGeneralInto<ImportanceOrder::AmongEqualDepths>(const Polytope&, const Pose&, const Polytope&,
+                                                                    const Pose&, const Settings&, Manifold&);
 
 }  // namespace detail
 

@@ -5,6 +5,7 @@
 #include <gdcontact/collide.hpp>
 
 #include "contact/feature_intersection.hpp"
+#include "contact/half_space.hpp"
 #include "geometry/minkowski.hpp"
 
 namespace gdc::detail {
@@ -61,5 +62,20 @@ void refineNormal(Vec3& normal, double& normalOverlap, const FeatureView& a, con
 /// when finite input overflowed into a non-finite contact.
 void emitManifold(const LiftedPoints& points, const Vec3& normal, const Pose& commonToWorld, const Settings& settings,
                   double tolerance, const Vec3* centroids, int centroidCount, Manifold& manifold);
+
+/// emitManifold's manifold with the points in lift order, for a caller that orders them by depth
+/// itself, keeping the order of equal depths (the ODE adapter's writeContacts): only where the
+/// ranking keeps every point (at most settings.maxContacts of them) and no two depths compare
+/// equal, so that the importance order decides nothing that caller reads — the same points, to the
+/// bit, and the same throw. Returns false (nothing written) otherwise: emitManifold ranks them.
+bool emitInLiftOrder(const LiftedPoints& points, const Vec3& normal, const Pose& commonToWorld, const Settings& settings,
+                     Manifold& manifold);
+
+/// collideGeneral(a, poseA, b, poseB, settings) written into `out`, the points in `order`
+/// (half_space.hpp's ImportanceOrder; instantiated for AmongEqualDepths, the ODE adapter's pair
+/// path). On a throw `out` is unspecified.
+template <ImportanceOrder order>
+void collideGeneralInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
+                        const Settings& settings, Manifold& out);
 
 }  // namespace gdc::detail

@@ -122,6 +122,13 @@ struct SmallFeaturesFlag<Hooks, std::void_t<decltype(Hooks::kSmallFeatures)>> : 
 template <class Hooks>
 constexpr bool intersectsSmallFeatures() { return SmallFeaturesFlag<Hooks>::value; }
 
+/// The order of the points the hooks' caller needs (Hooks::kOrder, half_space.hpp's
+/// ImportanceOrder; Full where the hooks name none).
+template <class Hooks, class = void>
+struct OrderFlag : std::integral_constant<ImportanceOrder, ImportanceOrder::Full> {};
+template <class Hooks>
+struct OrderFlag<Hooks, std::void_t<decltype(Hooks::kOrder)>> : std::integral_constant<ImportanceOrder, Hooks::kOrder> {};
+
 /// Stage 3 and the manifold written out, for two polytopes: the features in A's frame (refining
 /// the normal among their faces), their intersection in the contact plane, the depth
 /// confirmation, the supports' gap where nothing intersects, emitManifold.
@@ -171,6 +178,14 @@ template <class Hooks>
         }
         kept.push_back({middle, gap, Vec2::Zero()});
     }
+    // A caller that orders the points by depth itself (OrderFlag AmongEqualDepths) gets them in
+    // lift order where every point is kept and no two depths are equal: the ranking could only
+    // have ordered them (emitInLiftOrder).
+    // (Its first condition here as well: a reduced face, the common case of many points, makes no call.)
+    if constexpr (OrderFlag<Hooks>::value == ImportanceOrder::AmongEqualDepths)
+        if (static_cast<int>(kept.size()) <= settings.maxContacts &&
+            emitInLiftOrder(kept, normal, poseA, settings, manifold))
+            return Composed::Done;
     const Vec3 centroids[2] = {pair.centreA, pair.centreB};
     emitManifold(kept, normal, poseA, settings, tolerance, centroids, 2, manifold);
     return Composed::Done;

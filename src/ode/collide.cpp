@@ -9,6 +9,7 @@
 #include "ode_internals.hpp"
 #include "thread_cache.hpp"
 #include "contact/box_box.hpp"
+#include "contact/collide_general.hpp"
 #include "contact/half_space.hpp"
 
 #include <algorithm>
@@ -404,10 +405,18 @@ void queryInto(const Polytope& a, const Pose& poseA, const detail::ThreadCache::
     out.assignUsed(gdc::collide(a, poseA, b, settings));
 }
 
+// The pair's answer too goes to writeContacts alone, with the caller's limit as the core's budget
+// (collideLimited): the core's points are at most maxContacts, so writeContacts truncates none;
+// its filter drops points by their own depth and position only, and orders the rest by depth,
+// equal depths in the core's order. So the importance order reaches ODE only among equal depths,
+// swapped or not, in either ContactOrder: AmongEqualDepths (collide_general.hpp, emitInLiftOrder;
+// where the core drops points it ranks them in full). A pair cache's query keeps the full order.
 void queryInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB, const Settings& settings,
                  Manifold& out) {
-    if (gdc::detail::boxBoxApplies(a, b, settings)) return gdc::detail::collideBoxBoxInto(a, poseA, b, poseB, settings, out);
-    out.assignUsed(gdc::collide(a, poseA, b, poseB, settings));
+    constexpr gdc::detail::ImportanceOrder order = gdc::detail::ImportanceOrder::AmongEqualDepths;
+    if (gdc::detail::boxBoxApplies(a, b, settings))
+        return gdc::detail::collideBoxBoxInto<order>(a, poseA, b, poseB, settings, out);
+    gdc::detail::collideGeneralInto<order>(a, poseA, b, poseB, settings, out);
 }
 
 // The settings for one core call: `settings`, or a copy with the caller's smaller limit.

@@ -7,8 +7,9 @@
 // box–box and box–plane answers in place (detail::collideBoxBoxInto, collideHalfSpaceInto) and
 // skips the normal's square root where its squared length is exactly 1; this pins those shortcuts
 // to gdc::collide's own path — and the half-space path's face points, which the adapter has the
-// core rank only among equal depths (resting poses with exact ties among them). The largest
-// difference found is printed (and required to be 0).
+// core rank only among equal depths (resting poses with exact ties among them), and likewise the
+// box–box and general pair paths' points (stacked boxes and box-shaped hulls, ties to the bit).
+// The largest difference found is printed (and required to be 0).
 #include <gdcontact/ode.hpp>
 
 #include "ode_support.hpp"
@@ -88,6 +89,7 @@ std::vector<dContactGeom> expectedContacts(dGeomID o1, dGeomID o2, int limit, co
 
 struct Comparison {
     long long calls = 0, contacts = 0, mismatches = 0;
+    long long tied = 0;  // calls whose overlapping contacts include two of equal depth (to the bit)
     double largest = 0;  // over positions, normals and depths
 };
 
@@ -97,6 +99,11 @@ void compare(dGeomID o1, dGeomID o2, int limit, const Settings& installed, Compa
     const std::vector<dContactGeom> expected = expectedContacts(o1, o2, limit, installed);
     ++result.calls;
     result.contacts += count;
+    bool tied = false;
+    for (std::size_t i = 0; i < expected.size(); ++i)
+        for (std::size_t j = i + 1; j < expected.size(); ++j)
+            tied = tied || (expected[i].depth > 0 && expected[i].depth == expected[j].depth);
+    result.tied += tied;
     if (count != static_cast<int>(expected.size())) {
         ++result.mismatches;
         return;
@@ -155,9 +162,32 @@ Pose restingWithTies(std::mt19937_64& random, int i, double height) {
     }
 }
 
+// Two bodies stacked, the upper's face resting on the lower's, whose contact points tie in depth
+// to the bit (the adapter asks the core to rank a pair's points only among equal depths,
+// collide.cpp's queryInto): flat (every depth equal), the upper tilted about one of the lower's
+// face axes (pairs of equal depths), turned about the vertical (a polygon of equal depths); every
+// fourth pose any pose at all (general, every depth different). `lower`, `upper`: half heights.
+void placeStacked(std::mt19937_64& random, int i, dGeomID lowerGeom, double lower, dGeomID upperGeom, double upper) {
+    std::uniform_real_distribution<double> unit(-0.5, 0.5);
+    const Vec3 position(0.4 * unit(random), 0.4 * unit(random), lower + upper - 0.005 - 0.01 * unit(random));
+    switch (i % 5) {
+        case 0:
+            setPose(lowerGeom, randomPose(random, 0.6));
+            setPose(upperGeom, randomPose(random, 0.6));
+            return;
+        case 1: setPose(upperGeom, Pose{Mat3::Identity(), position}); break;
+        case 2: setPose(upperGeom, Pose{rotationAbout(Vec3::UnitX(), 0.004 * unit(random)), position}); break;
+        case 3: setPose(upperGeom, Pose{rotationAbout(Vec3::UnitY(), 0.004 * unit(random)), position}); break;
+        default: setPose(upperGeom, Pose{rotationAbout(Vec3::UnitZ(), 2 * unit(random)), position}); break;
+    }
+    setPose(lowerGeom, Pose{Mat3::Identity(), Vec3::Zero()});
+}
+
 void report(const char* type, const Comparison& c) {
-    std::printf("adapter = core, %s: %lld calls, %.2f contacts per call, %lld mismatches, largest difference %g\n",
-                type, c.calls, static_cast<double>(c.contacts) / static_cast<double>(c.calls), c.mismatches, c.largest);
+    std::printf("adapter = core, %s: %lld calls, %.2f contacts per call, %lld with tied depths, %lld mismatches, "
+                "largest difference %g\n",
+                type, c.calls, static_cast<double>(c.contacts) / static_cast<double>(c.calls), c.tied, c.mismatches,
+                c.largest);
 }
 
 void checkEveryPairType(const Settings& installed) {
@@ -227,9 +257,30 @@ void checkEveryPairType(const Settings& installed) {
         box1, boxHull, installed, 7);
     report("hull-hull", hullHull);
     report("box-convex", boxHullPair);
+    // Stacks with exact depth ties (and general poses): box on box, box-shaped hull on box, box on
+    // box-shaped hull, box-shaped hull on box-shaped hull.
+    dGeomID boxHull2 = gdc::ode::createConvex(0, boxCorners(Vec3(0.3, 0.5, 0.2)).data(), 8);
+    const Comparison boxStack = run([&](std::mt19937_64& random, int i) { placeStacked(random, i, box1, 0.3, box2, 0.15); },
+                                    box1, box2, installed, 9);
+    const Comparison hullOnBox = run(
+        [&](std::mt19937_64& random, int i) { placeStacked(random, i, box1, 0.3, boxHull, 0.3); }, box1, boxHull,
+        installed, 10);
+    const Comparison boxOnHull = run(
+        [&](std::mt19937_64& random, int i) { placeStacked(random, i, boxHull, 0.3, box2, 0.15); }, boxHull, box2,
+        installed, 11);
+    const Comparison hullStack = run(
+        [&](std::mt19937_64& random, int i) { placeStacked(random, i, boxHull, 0.3, boxHull2, 0.2); }, boxHull,
+        boxHull2, installed, 12);
+    report("box-box (stacked, resting)", boxStack);
+    report("box-convex (hull on box, resting)", hullOnBox);
+    report("box-convex (box on hull, resting)", boxOnHull);
+    report("convex-convex (stacked, resting)", hullStack);
+    for (const Comparison* c : {&boxStack, &hullOnBox, &boxOnHull, &hullStack})
+        CHECK(c->tied > c->calls / 4);  // the ties the shortcut must leave to the ranking are there
+    dGeomDestroy(boxHull2);
 
-    for (const Comparison* c :
-         {&boxBox, &boxPlane, &boxGround, &convexPlane, &boxHullGround, &cloudPlane, &hullHull, &boxHullPair}) {
+    for (const Comparison* c : {&boxBox, &boxPlane, &boxGround, &convexPlane, &boxHullGround, &cloudPlane, &hullHull,
+                                &boxHullPair, &boxStack, &hullOnBox, &boxOnHull, &hullStack}) {
         CHECK(c->calls == 2 * kPosesPerType);
         CHECK(c->contacts > c->calls / 2);  // the poses mostly touch: the comparison has contacts to compare
         CHECK(c->mismatches == 0);
