@@ -124,6 +124,7 @@ struct BoxPairHooks {
         return boxFeature(frame.b, feature, &frame.bInA);
     }
     static bool refinesNormal() { return true; }
+    static constexpr const KnownOverlaps* knownOverlaps() { return nullptr; }  // the closed forms carry none
 
     // The depth confirmation: the general pipeline casts a ray along n through A − B where the
     // lifted points fall short of the supports' overlap, and adds a point where the cast's exit is

@@ -49,11 +49,12 @@ Vec3 minimumOverlapFaceNormal(const MinkowskiDifference& pair) {
 // the caller already has) when the direction is the normal itself: the face the normal came from
 // is usually among the candidates of each later step. overlapAlong is a deterministic function of
 // the direction's value, so the reused number is the one it would compute. Likewise an overlap an
-// earlier stage already knows along exactly this direction (pair.knownOverlaps: the hull
+// earlier stage already knows along exactly this direction (`known`, nullptr for none: the hull
 // enumeration's, along the selected faces' normals), equal to the search's within rounding.
-double overlapAlong(const MinkowskiDifference& pair, const Vec3& direction, const Vec3& normal, double normalOverlap) {
+double overlapAlong(const MinkowskiDifference& pair, const KnownOverlaps* known, const Vec3& direction,
+                    const Vec3& normal, double normalOverlap) {
     if (direction == normal) return normalOverlap;
-    if (const KnownOverlaps* known = pair.knownOverlaps)
+    if (known)
         for (int i = 0; i < known->count; ++i)
             if (direction == known->directions[i]) return known->overlaps[i];
     return pair.overlapAlong(direction);
@@ -72,8 +73,8 @@ double overlapAlong(const MinkowskiDifference& pair, const Vec3& direction, cons
 // normal, so collide(A, B) and collide(B, A) choose alike. Returns true when `normal` changed.
 // `normalOverlap` is the pair's overlap along `normal`; both are updated together.
 bool preferNearbyFaceNormal(const MinkowskiDifference& pair, const Feature& featureA, const SmallVector<int, 8>& piecesA,
-                            const Feature& featureB, const SmallVector<int, 8>& piecesB, double tolerance, Vec3& normal,
-                            double& normalOverlap) {
+                            const Feature& featureB, const SmallVector<int, 8>& piecesB, double tolerance,
+                            const KnownOverlaps* known, Vec3& normal, double& normalOverlap) {
     const double current = normalOverlap;
     if (!(current > tolerance)) return false;  // touching or apart along n: n already separates them
     const double limit = kClearlySmallerOverlap * current;
@@ -116,7 +117,7 @@ bool preferNearbyFaceNormal(const MinkowskiDifference& pair, const Feature& feat
     Vec3 best = normal;
     auto consider = [&](const Vec3& candidate) {
         if (overlapLowerBound(candidate) >= limit + tolerance) return;
-        const double overlap = overlapAlong(pair, candidate, normal, current);
+        const double overlap = overlapAlong(pair, known, candidate, normal, current);
         if (!(overlap < limit)) return;
         const double cosine = candidate.dot(normal);
         if (!found || overlap < bestOverlap - tolerance || (overlap <= bestOverlap + tolerance && cosine > bestCos))
@@ -355,11 +356,11 @@ bool edgeEdgeNormal(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& 
 // by rounding there picks between normals that agree to rounding. Equal overlaps fall back to the
 // face closer to the growth-distance normal (the face the cast hit).
 void refineNormal(Vec3& normal, double& normalOverlap, const FeatureView& a, const FeatureView& b,
-                  const MinkowskiDifference& pair) {
+                  const MinkowskiDifference& pair, const KnownOverlaps* known) {
     Vec3 best = normal;
     double bestOverlap = INFINITY, bestCos = -2;
     auto consider = [&](const Vec3& candidate) {
-        const double overlap = overlapAlong(pair, candidate, normal, normalOverlap), cosine = candidate.dot(normal);
+        const double overlap = overlapAlong(pair, known, candidate, normal, normalOverlap), cosine = candidate.dot(normal);
         if (overlap < bestOverlap || (overlap == bestOverlap && cosine > bestCos))
             bestOverlap = overlap, bestCos = cosine, best = candidate;
     };
@@ -481,9 +482,11 @@ struct GeneralPairHooks {
     bool boundFaceOverlaps;
     bool carryHullGauge;
     // What the hull enumeration found (empty unless it ran with carryHullGauge), and the overlaps
-    // along the selected faces' normals that refineNormal reads from it (pair.knownOverlaps).
+    // along the selected faces' normals that refineNormal reads from it (knownOverlaps()), where
+    // the enumeration ran with the carry.
     HullGaugeCarry carry;
     KnownOverlaps known;
+    bool carrying = false;
     // featureA's findings for featureB, which decides whether refineNormal reads the carry.
     double faceOverlapA = NAN;
     Vec3 directionA = Vec3::Zero();
@@ -518,10 +521,9 @@ struct GeneralPairHooks {
         // the depth certificate) where no search keeps state: a skipped search of a hill climb
         // would move the later climbs' starting vertices, and with them the ray cast's answer.
         const bool enumerates = enumerateSmallHulls && hullGaugeApplies(a, b);
-        const bool carrying = enumerates && carryHullGauge && searchesWithoutState;
+        carrying = enumerates && carryHullGauge && searchesWithoutState;
         const GrowthDistance growth = enumerates ? hullGrowth(pair, carrying ? &carry : nullptr)
                                                  : growthDistance(pair, settings, /*needWitnesses=*/false);
-        if (carrying) pair.knownOverlaps = &known;
         stage1.normal = growth.valid ? growth.normal : minimumOverlapFaceNormal(pair);
         stage1.normalOverlap = pair.overlapAlong(stage1.normal);
         stage1.growthNormal = growth.valid;
@@ -575,8 +577,11 @@ struct GeneralPairHooks {
     // Stage 1's check of the growth-distance normal against the faces around the two features.
     bool preferNearbyFace(const PairFrame& frame, Vec3& normal, double& normalOverlap, const Manifold& manifold) const {
         return preferNearbyFaceNormal(frame.pair, manifold.featureA, piecesA, manifold.featureB, piecesB,
-                                      frame.tolerance, normal, normalOverlap);
+                                      frame.tolerance, knownOverlaps(), normal, normalOverlap);
     }
+    // The overlaps the enumeration's carry knows (filled as the features are placed), for the
+    // overhang check and refineNormal; nullptr where it did not carry.
+    const KnownOverlaps* knownOverlaps() const { return carrying ? &known : nullptr; }
     // The features in A's frame. A's vertices need no placing (the identity; it differs only in
     // turning −0 into +0), B's were placed by the enumeration where it carries.
     FeatureGeometry featureA(const PairFrame& frame, const Feature& feature) {

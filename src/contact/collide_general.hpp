@@ -52,9 +52,11 @@ bool edgeEdgeNormal(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& 
 /// Stage 1's last step, once the features are known: the contact normal among the features' faces
 /// (and their caps' faces) is the one along which the pair overlaps least; edge–edge (chains: each
 /// pair of their edges), the edges' common perpendicular; `normal` and `normalOverlap` updated
-/// together (collide.cpp). Called by the general pipeline and the box–box path alike.
+/// together (collide.cpp). Called by the general pipeline and the box–box path alike. `known`:
+/// overlaps an earlier stage already has (the hooks' knownOverlaps(); nullptr: none), read instead
+/// of a support search along exactly their directions.
 void refineNormal(Vec3& normal, double& normalOverlap, const FeatureView& a, const FeatureView& b,
-                  const MinkowskiDifference& pair);
+                  const MinkowskiDifference& pair, const KnownOverlaps* known = nullptr);
 
 /// Writes the lifted points (A's frame) to the manifold in world coordinates, ranked by importance
 /// and reduced to settings.maxContacts (reduction.hpp: rankContacts, with the bodies' `centroids`

@@ -24,6 +24,8 @@
 //       where kDelegatesRareCases is false);
 //   featureA(frame, feature), featureB(frame, feature) — the features in A's frame (view()-able);
 //   bool refinesNormal()                       — false where the normal is exact already (SAT);
+//   const KnownOverlaps* knownOverlaps()       — overlaps an earlier stage has (nullptr: none), for
+//       refineNormal;
 //   DepthCheck confirmDepth(frame, kept, deepest, deepestPoint, normal, featureA, featureB).
 // A half-space's hooks struct supplies (the plane brings the normal, the shape the rest):
 //   static constexpr bool kDelegatesRareCases = false, and preferNearbyFace (never asked: the
@@ -141,7 +143,7 @@ template <class Hooks>
     const auto featureA = hooks.featureA(frame, manifold.featureA);
     const auto featureB = hooks.featureB(frame, manifold.featureB);
     const FeatureView viewA = view(featureA), viewB = view(featureB);
-    if (hooks.refinesNormal()) refineNormal(normal, normalOverlap, viewA, viewB, pair);
+    if (hooks.refinesNormal()) refineNormal(normal, normalOverlap, viewA, viewB, pair, hooks.knownOverlaps());
 
     // Stage 3: the intersection in the contact plane, each point with its own depth.
     LiftedPoints kept;

@@ -7,9 +7,10 @@
 namespace gdc::detail {
 
 /// Overlaps of the pair that an earlier stage of the query already has, each along a direction as
-/// the later stage will spell it (compared bit for bit): collide.cpp's refineNormal reads them
-/// instead of searching the supports again (the general hooks fill them from the hull
-/// enumeration, hull_gauge.hpp's HullGaugeCarry).
+/// the later stage will spell it (compared bit for bit): collide.cpp's refineNormal and overhang
+/// check read them instead of searching the supports again (the general hooks fill them from the
+/// hull enumeration, hull_gauge.hpp's HullGaugeCarry, and hand them on as a value: the hooks'
+/// knownOverlaps()).
 struct KnownOverlaps {
     static constexpr int kCapacity = 2;
     int count = 0;
@@ -37,8 +38,6 @@ struct MinkowskiDifference {
     // previous answer. A local object per query: no state is shared between queries.
     mutable int lastSupportA = -1;
     mutable int lastSupportB = -1;
-    /// Overlaps an earlier stage knows (nullptr: none), owned by the query's hooks.
-    mutable const KnownOverlaps* knownOverlaps = nullptr;
 
     int supportA(const Vec3& direction) const {
         return lastSupportA = a.supportVertex(direction, bruteForceLimit, lastSupportA);
