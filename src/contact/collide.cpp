@@ -613,10 +613,14 @@ struct GeneralPairHooks {
         return geometry;
     }
     // The enumeration's overlap along a selected face's normal: NaN where it has none, the feature
-    // is no face or has a cap (more than one piece).
+    // is no face or has a cap (more than one piece). A face index beyond the carry's 64 bits (a
+    // polytope too large for the enumeration, whose `known` is empty) is never shifted by: a shift
+    // of 64 or more is undefined (UBSan in the sanitize run found it on 68- and 4529-face hulls).
     static double carriedFaceOverlap(const Feature& feature, const SmallVector<int, 8>& pieces, std::uint64_t known,
                                      const std::array<double, HullGaugeCarry::kMaxFaces>& overlaps) {
-        if (feature.type != FeatureType::Face || pieces.size() > 1 || !((known >> feature.index) & 1)) return NAN;
+        if (feature.type != FeatureType::Face || pieces.size() > 1 || feature.index >= HullGaugeCarry::kMaxFaces ||
+            !((known >> feature.index) & 1))
+            return NAN;
         return overlaps[feature.index];
     }
     bool refinesNormal() const { return !separatingAxis; }  // SAT's is exact already
