@@ -404,6 +404,31 @@ void refineNormal(Vec3& normal, double& normalOverlap, const FeatureView& a, con
     if (bestCos > -2) normal = best, normalOverlap = bestOverlap;
 }
 
+namespace {
+
+// The manifold written out in world coordinates: the normal, and points[pick(i)] for i < count.
+// Finite input can still overflow (a plane offset of 1e308, found by the fuzzer): refuse it rather
+// than hand out an infinite or NaN contact. x·0 is 0 for every finite x and NaN otherwise: one
+// test for all the coordinates written. emitManifold (ranked) and emitInLiftOrder (in lift order)
+// share it, so both write the same bits.
+template <class Pick>
+[[gnu::always_inline]] inline void writeWorldManifold(const LiftedPoints& points, int count, Pick pick,
+                                                      const Vec3& normal, const Pose& commonToWorld,
+                                                      Manifold& manifold) {
+    manifold.normal = commonToWorld.rotation * normal;
+    manifold.pointCount = count;
+    double nonFinite = 0;
+    for (int i = 0; i < count; ++i) {
+        const LiftedPoint& point = points[pick(i)];
+        manifold.points[i] = {commonToWorld.apply(point.position), point.depth};
+        nonFinite += (manifold.points[i].position * 0.0).sum() + point.depth * 0.0;
+    }
+    if (!(nonFinite == 0))
+        throw InvalidInput("the contact overflows double precision (coordinates or offsets near 1e308)");
+}
+
+}  // namespace
+
 void emitManifold(const LiftedPoints& points, const Vec3& normal, const Pose& commonToWorld, const Settings& settings,
                   double tolerance, const Vec3* centroids, int centroidCount, Manifold& manifold) {
     int chosen[kMaxManifoldPoints];
@@ -423,19 +448,7 @@ void emitManifold(const LiftedPoints& points, const Vec3& normal, const Pose& co
         rule.centroidCount = std::min(centroidCount, 2);
     }
     const int count = rankContacts(points, rule, chosen);
-    manifold.normal = commonToWorld.rotation * normal;
-    manifold.pointCount = count;
-    // x·0 is 0 for every finite x and NaN otherwise: one test for all the coordinates written.
-    double nonFinite = 0;
-    for (int i = 0; i < count; ++i) {
-        const LiftedPoint& point = points[chosen[i]];
-        manifold.points[i] = {commonToWorld.apply(point.position), point.depth};
-        nonFinite += (manifold.points[i].position * 0.0).sum() + point.depth * 0.0;
-    }
-    // Finite input can still overflow (a plane offset of 1e308, found by the fuzzer): refuse it
-    // rather than hand out an infinite or NaN contact.
-    if (!(nonFinite == 0))
-        throw InvalidInput("the contact overflows double precision (coordinates or offsets near 1e308)");
+    writeWorldManifold(points, count, [&](int i) { return chosen[i]; }, normal, commonToWorld, manifold);
 }
 
 bool emitInLiftOrder(const LiftedPoints& points, const Vec3& normal, const Pose& commonToWorld, const Settings& settings,
@@ -448,17 +461,7 @@ bool emitInLiftOrder(const LiftedPoints& points, const Vec3& normal, const Pose&
     for (int i = 0; i < total; ++i)
         for (int j = i + 1; j < total; ++j)
             if (points[i].depth == points[j].depth) return false;
-    // emitManifold's writing, expression for expression (the same bits).
-    manifold.normal = commonToWorld.rotation * normal;
-    manifold.pointCount = total;
-    double nonFinite = 0;
-    for (int i = 0; i < total; ++i) {
-        const LiftedPoint& point = points[i];
-        manifold.points[i] = {commonToWorld.apply(point.position), point.depth};
-        nonFinite += (manifold.points[i].position * 0.0).sum() + point.depth * 0.0;
-    }
-    if (!(nonFinite == 0))
-        throw InvalidInput("the contact overflows double precision (coordinates or offsets near 1e308)");
+    writeWorldManifold(points, total, [](int i) { return i; }, normal, commonToWorld, manifold);
     return true;
 }
 

@@ -367,11 +367,6 @@ int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int ma
     return written;
 }
 
-// gdc::collide's answer written into `out`: its dispatch (collide.cpp) to the box–box and
-// half-space paths, whose answers are written in place — a Manifold returned by value is 0.5 KB
-// zeroed and then copied, a tenth of a box–plane call (tests/ode/adapter_overhead.sh). Every other
-// pair takes gdc::collide itself. tests/ode/adapter_equality_test.cpp checks the adapter against
-// gdc::collide on random poses of every pair type.
 // AngularTolerance(radians), the thread's copy while `radians` is the same to the bit.
 const gdc::detail::AngularTolerance& angularToleranceOf(detail::ThreadCache& cache, double radians) {
     std::uint64_t bits;
@@ -383,8 +378,12 @@ const gdc::detail::AngularTolerance& angularToleranceOf(detail::ThreadCache& cac
     return cache.angularTolerance;
 }
 
-// A plane's normalisation, made once per plane (planeSlot), where the core accepted it.
-
+// gdc::collide's answer written into `out`: its dispatch (collide.cpp) to the box–box, general and
+// half-space paths, whose answers are written in place — a Manifold returned by value is 0.5 KB
+// zeroed and then copied, a tenth of a box–plane call (tests/ode/adapter_overhead.sh). A plane the
+// core did not accept normalised (planeSlot) takes gdc::collide itself.
+// tests/ode/adapter_equality_test.cpp checks the adapter against gdc::collide on random poses of
+// every pair type.
 // The answer goes to writeContacts alone, which orders the points by depth, keeping the order of
 // equal depths: the core's importance order is asked for only among equal depths
 // (ImportanceOrder::AmongEqualDepths, half_space.hpp), so a face whose corners all have different
