@@ -103,6 +103,13 @@ const std::vector<FailureLimit>& failureLimits();
 struct RunOptions {
     bool sleep = true;           ///< ODE auto-disable on, default thresholds (else off; sleep time emulated)
     double durationScale = 1.0;  ///< multiplies every scene's duration
+    /// An experiment on the order QuickStep meets the rows *across* pairs (docs/algorithm.md, "Order
+    /// across pairs"): before each step, every awake body of a joint-connected group but its lowest
+    /// is disabled, so that ODE's island walk (depth-first from the first enabled body of the
+    /// world's list: the newest) starts at the lowest body and meets the contacts from the ground
+    /// up; the walk enables the rest again. It keeps ODE's auto-disable from sampling those bodies,
+    /// so it requires sleep off.
+    bool rootIslandsAtLowest = false;
 };
 
 /// The outcome of one scene × stepper × contender × seed. Plain data (workers share it through memory).

@@ -6,7 +6,7 @@
 // Usage: bench_solver_seeds [--quick | --full] [--out DIR] [--scene NAME]... [--stepper NAME]...
 //          [--contender SPEC]... [--no-default-contenders] [--seeds N] [--seeds-for SCENE[:STEPPER]=N]...
 //          [--first-seed N] [--jobs N]
-//          [--no-sleep] [--duration-scale X] [--cost-states N] [--cost-repetitions N] [--no-cost]
+//          [--no-sleep] [--duration-scale X] [--island-root lowest|as-built] [--cost-states N] [--cost-repetitions N] [--no-cost]
 //   SPEC: gdc | ode-box | ode-convex | gdc:NAME=VALUE[,NAME=VALUE...] (a gdc::Settings variant)
 // Writes DIR/solver_seeds_runs.csv (one row per run), DIR/solver_seeds_summary.csv (one row per
 // scene × stepper × contender), DIR/solver_seeds_scenes.csv, DIR/solver_seeds_limits.csv and
@@ -49,6 +49,7 @@ struct Options {
     int jobs = 0;    // 0: hardware threads
     bool sleep = true;
     double durationScale = 1.0;
+    bool rootIslandsAtLowest = false;  // --island-root lowest (RunOptions::rootIslandsAtLowest)
     int costStates = -1;
     int costRepetitions = 3;
     bool cost = true;
@@ -107,6 +108,11 @@ Options parse(int argc, char** argv) {
         }
         else if (a == "--jobs") o.jobs = std::stoi(value(i));
         else if (a == "--no-sleep") o.sleep = false;
+        else if (a == "--island-root") {
+            const std::string root = value(i);
+            if (root != "lowest" && root != "as-built") throw std::invalid_argument("--island-root lowest|as-built");
+            o.rootIslandsAtLowest = root == "lowest";
+        }
         else if (a == "--duration-scale") o.durationScale = std::stod(value(i));
         else if (a == "--cost-states") o.costStates = std::stoi(value(i));
         else if (a == "--cost-repetitions") o.costRepetitions = std::stoi(value(i));
@@ -115,7 +121,7 @@ Options parse(int argc, char** argv) {
             std::cout << "bench_solver_seeds [--quick | --full] [--out DIR] [--scene NAME]... [--stepper NAME]...\n"
                          "  [--contender gdc|ode-box|ode-convex|gdc:NAME=VALUE,...]... [--no-default-contenders]\n"
                          "  [--seeds N] [--seeds-for SCENE[:STEPPER]=N]... [--first-seed N] [--jobs N] [--no-sleep]\n"
-                         "  [--duration-scale X]\n"
+                         "  [--duration-scale X] [--island-root lowest|as-built]\n"
                          "  [--cost-states N] [--cost-repetitions N] [--no-cost]\nsettings:";
             for (const std::string& name : ss::settingNames()) std::cout << ' ' << name;
             std::cout << "\nscenes:";
@@ -124,6 +130,9 @@ Options parse(int argc, char** argv) {
             std::exit(0);
         } else throw std::invalid_argument("unknown argument '" + a + "' (--help)");
     }
+    if (o.rootIslandsAtLowest && o.sleep)
+        throw std::invalid_argument("--island-root lowest disables bodies before each step, which keeps ODE's auto-disable "
+                                    "from sampling them: use it with --no-sleep");
     if (o.seeds == 0 || o.seeds < -1 || o.jobs < 0 || !(o.durationScale > 0) || o.costRepetitions < 1)
         throw std::invalid_argument("--seeds, --jobs, --duration-scale, --cost-repetitions out of range");
     return o;
@@ -258,6 +267,7 @@ int main(int argc, char** argv) {
         ss::RunOptions runOptions;
         runOptions.sleep = o.sleep;
         runOptions.durationScale = o.durationScale;
+        runOptions.rootIslandsAtLowest = o.rootIslandsAtLowest;
         std::cerr << "bench_solver_seeds (" << o.mode << "): " << jobs.size() << " runs on " << workers << " processes\n";
         const auto start = std::chrono::steady_clock::now();
         std::vector<ss::SeedResult> results;
