@@ -517,48 +517,8 @@ int collideAll(World& w, const Contender& contender) {
     return maker.made;
 }
 
-/// RunOptions::rootIslandsAtLowest: per group of bodies connected by enabled joints (ODE's islands,
-/// as its walk will find them), every awake body but the lowest is disabled; a group with no awake
-/// body is left asleep, as ODE would leave it. Public API only (dBodyGetJoint, dJointGetBody).
-void rootIslandsAtLowest(const World& w) {
-    const std::size_t n = w.bodies.size();
-    std::unordered_map<dBodyID, std::size_t> indexOf;
-    for (std::size_t i = 0; i < n; ++i) indexOf[w.bodies[i]] = i;
-    std::vector<char> seen(n, 0);
-    std::vector<std::size_t> group, stack;
-    for (std::size_t start = 0; start < n; ++start) {
-        if (seen[start]) continue;
-        group.clear();
-        stack.assign(1, start);
-        seen[start] = 1;
-        while (!stack.empty()) {
-            const std::size_t b = stack.back();
-            stack.pop_back();
-            group.push_back(b);
-            const int joints = dBodyGetNumJoints(w.bodies[b]);
-            for (int j = 0; j < joints; ++j) {
-                dJointID joint = dBodyGetJoint(w.bodies[b], j);
-                if (!dJointIsEnabled(joint)) continue;
-                for (int end = 0; end < 2; ++end) {
-                    const auto other = indexOf.find(dJointGetBody(joint, end));
-                    if (other == indexOf.end() || seen[other->second]) continue;
-                    seen[other->second] = 1;
-                    stack.push_back(other->second);
-                }
-            }
-        }
-        std::size_t root = n;
-        for (std::size_t b : group)
-            if (dBodyIsEnabled(w.bodies[b]) && (root == n || dBodyGetPosition(w.bodies[b])[2] < dBodyGetPosition(w.bodies[root])[2]))
-                root = b;
-        if (root == n) continue;
-        for (std::size_t b : group)
-            if (b != root && dBodyIsEnabled(w.bodies[b])) dBodyDisable(w.bodies[b]);
-    }
-}
-
 void stepWorld(World& w, const Stepper& stepper, const RunOptions& options) {
-    if (options.rootIslandsAtLowest) rootIslandsAtLowest(w);
+    if (options.rootIslandsAtLowest) rootIslandsAtLowest(w.bodies);
     if (stepper.quick) dWorldQuickStep(w.scene->world(), SolverConstants::dt);
     else dWorldStep(w.scene->world(), SolverConstants::dt);
 }
@@ -911,6 +871,43 @@ std::vector<CostResult> measureCost(const SceneSpec& spec, const Stepper& steppe
         r.contacts /= r.states;
     }
     return results;
+}
+
+void rootIslandsAtLowest(const std::vector<dBodyID>& bodies) {
+    const std::size_t n = bodies.size();
+    std::unordered_map<dBodyID, std::size_t> indexOf;
+    for (std::size_t i = 0; i < n; ++i) indexOf[bodies[i]] = i;
+    std::vector<char> seen(n, 0);
+    std::vector<std::size_t> group, stack;
+    for (std::size_t start = 0; start < n; ++start) {
+        if (seen[start]) continue;
+        group.clear();
+        stack.assign(1, start);
+        seen[start] = 1;
+        while (!stack.empty()) {
+            const std::size_t b = stack.back();
+            stack.pop_back();
+            group.push_back(b);
+            const int joints = dBodyGetNumJoints(bodies[b]);
+            for (int j = 0; j < joints; ++j) {
+                dJointID joint = dBodyGetJoint(bodies[b], j);
+                if (!dJointIsEnabled(joint)) continue;
+                for (int end = 0; end < 2; ++end) {
+                    const auto other = indexOf.find(dJointGetBody(joint, end));
+                    if (other == indexOf.end() || seen[other->second]) continue;
+                    seen[other->second] = 1;
+                    stack.push_back(other->second);
+                }
+            }
+        }
+        std::size_t root = n;
+        for (std::size_t b : group)
+            if (dBodyIsEnabled(bodies[b]) && (root == n || dBodyGetPosition(bodies[b])[2] < dBodyGetPosition(bodies[root])[2]))
+                root = b;
+        if (root == n) continue;
+        for (std::size_t b : group)
+            if (b != root && dBodyIsEnabled(bodies[b])) dBodyDisable(bodies[b]);
+    }
 }
 
 }  // namespace gdc::solver_seeds

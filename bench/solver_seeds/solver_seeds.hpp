@@ -14,6 +14,8 @@
 
 #include <gdcontact/settings.hpp>
 
+#include <ode/ode.h>
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -111,6 +113,12 @@ struct RunOptions {
     /// so it requires sleep off.
     bool rootIslandsAtLowest = false;
 };
+
+/// RunOptions::rootIslandsAtLowest's step: per group of `bodies` connected by enabled joints (ODE's
+/// islands, as its walk will find them), every awake body but the lowest is disabled, so that the
+/// walk of the next dWorldQuickStep / dWorldStep starts there and enables the others again; a
+/// group with no awake body is left asleep, as ODE would leave it. Public API only.
+void rootIslandsAtLowest(const std::vector<dBodyID>& bodies);
 
 /// The outcome of one scene × stepper × contender × seed. Plain data (workers share it through memory).
 struct SeedResult {

@@ -186,3 +186,56 @@ TEST_CASE("the composites heap under dWorldStep: no LCP internal error, no tunne
         CHECK(result.failure == 0);
     }
 }
+
+TEST_CASE("island rooted at its lowest body (--island-root lowest): the walk starts at each island's lowest body and wakes the rest") {
+    // What the experiment in docs/algorithm.md ("Order across pairs") rests on: with every awake
+    // body of an island but the lowest disabled, ODE's step still moves them all (its walk enables
+    // what it reaches through joints), so no body is frozen; an island that sleeps stays asleep.
+    gdc::testing::OdeSession session;
+    dWorldID world = dWorldCreate();
+    dWorldSetGravity(world, 0, 0, -9.81);
+    dJointGroupID joints = dJointGroupCreate(0);
+    // Two islands: a chain of three bodies made top first (so the world's list starts at the
+    // lowest one, and the test also covers a root that is not the list's first), and a pair asleep.
+    std::vector<dBodyID> bodies;
+    for (int i = 2; i >= 0; --i) {
+        dBodyID body = dBodyCreate(world);
+        dBodySetPosition(body, 0, 0, 1.0 + i);
+        bodies.push_back(body);
+    }
+    dBodyID sleeperA = dBodyCreate(world), sleeperB = dBodyCreate(world);
+    dBodySetPosition(sleeperA, 5, 0, 1);
+    dBodySetPosition(sleeperB, 5, 0, 2);
+    auto ball = [&](dBodyID a, dBodyID b) {
+        dJointID joint = dJointCreateBall(world, joints);
+        dJointAttach(joint, a, b);
+        const dReal* pa = dBodyGetPosition(a);
+        const dReal* pb = dBodyGetPosition(b);
+        dJointSetBallAnchor(joint, (pa[0] + pb[0]) / 2, (pa[1] + pb[1]) / 2, (pa[2] + pb[2]) / 2);
+    };
+    ball(bodies[0], bodies[1]);
+    ball(bodies[1], bodies[2]);
+    ball(sleeperA, sleeperB);
+    dBodyDisable(sleeperA);
+    dBodyDisable(sleeperB);
+    bodies.push_back(sleeperA);
+    bodies.push_back(sleeperB);
+
+    gdc::solver_seeds::rootIslandsAtLowest(bodies);
+    CHECK(!dBodyIsEnabled(bodies[0]));  // the top of the chain
+    CHECK(!dBodyIsEnabled(bodies[1]));
+    CHECK(dBodyIsEnabled(bodies[2]));   // the lowest: the root
+    CHECK(!dBodyIsEnabled(sleeperA));   // asleep, left asleep
+    CHECK(!dBodyIsEnabled(sleeperB));
+
+    dWorldQuickStep(world, 0.01);
+    for (int i = 0; i < 3; ++i) {
+        INFO("chain body " << i);
+        CHECK(dBodyIsEnabled(bodies[i]));
+        CHECK(dBodyGetLinearVel(bodies[i])[2] < 0);  // it fell with the others: not frozen
+    }
+    CHECK(!dBodyIsEnabled(sleeperA));
+    CHECK(dBodyGetLinearVel(sleeperA)[2] == 0);
+    dJointGroupDestroy(joints);
+    dWorldDestroy(world);
+}
