@@ -194,21 +194,45 @@ int rankConvexCycle(const RankPoint* points, int count, const RankingRule& rule,
         }
         return best;
     };
+    // Where one value alone reaches a pick's band, that value is the largest and every other is
+    // below the band: the pick is that point, without a pass over the candidates' identities.
+    // `Leader` follows the largest value and the largest of the others as the values are made
+    // (NaN, which reaches no band, is passed over); the band is the one pickAtLeast is given.
+    // Callgrind, two boxes' octagon (tilted, so one deepest point, one farthest): the first two
+    // picks, 15 visits of pickAtLeast a ranking, become one test each.
+    struct Leader {
+        double top = -INFINITY, runnerUp = -INFINITY;
+        int index = -1;
+        void see(int k, double v) {
+            if (v > top) runnerUp = top, top = v, index = k;
+            else if (v > runnerUp) runnerUp = v;
+        }
+        bool alone(double band) const { return index >= 0 && top >= band && !(runnerUp >= band); }
+    };
+    auto pickLeaderOrAtLeast = [&](const Leader& leader, double band) {
+        return leader.alone(band) ? leader.index : pickAtLeast(band);
+    };
     double deepest = -INFINITY;
-    for (int k = 0; k < count; ++k) deepest = std::max(deepest, value[k] = points[k].depth);
+    Leader deepestLeader;
+    for (int k = 0; k < count; ++k) {
+        deepest = std::max(deepest, value[k] = points[k].depth);
+        deepestLeader.see(k, value[k]);
+    }
     // A non-finite depth finds no first point: the general path answers as it always did. Every
     // later pick finds one: the certificate held, so the points are finite, and the band
     // (keep = 1 − hysteresis, within [0.9, 1] by Settings) admits at least the best value.
-    const int first = pickAtLeast(deepest - rule.tolerance);
+    const int first = pickLeaderOrAtLeast(deepestLeader, deepest - rule.tolerance);
     if (first < 0) return -1;
     chosen[0] = first, freeMask &= ~(std::uint32_t{1} << first);
     const Vec2 p0 = points[first].planar;
     double farthest = 0;
+    Leader farthestLeader;
     for (std::uint32_t m = freeMask; m != 0; m &= m - 1) {
         const int k = __builtin_ctz(m);
         farthest = std::max(farthest, value[k] = (points[k].planar - p0).squaredNorm());
+        farthestLeader.see(k, value[k]);
     }
-    const int second = pickAtLeast(keep * keep * farthest);
+    const int second = pickLeaderOrAtLeast(farthestLeader, keep * keep * farthest);
     chosen[1] = second, freeMask &= ~(std::uint32_t{1} << second);
     const double areaTolerance = rule.tolerance * std::sqrt(farthest);
     // The third point: the largest triangle on the segment.
@@ -221,17 +245,32 @@ int rankConvexCycle(const RankPoint* points, int count, const RankingRule& rule,
     if (!(bestGain > areaTolerance)) return -1;
     const int third = pickAtLeast(keep * bestGain);
     chosen[2] = third, freeMask &= ~(std::uint32_t{1} << third);
-    // The triangle counter-clockwise is its corners in cyclic order; each free point's hull
-    // neighbours are the corners around its arc.
+    // A free point's gain: the triangle on the kept edge between its hull neighbours. It changes
+    // only when a neighbour does (the arcs on either side of the point taken), so each slot
+    // recomputes those alone — the same expression of the same neighbours, so the same bits — and
+    // the best gain is the maximum of the values kept, in the same order; the last slot updates
+    // nothing. Two boxes' octagon to a budget of 6: 12 gains a ranking, now the first slot's 5
+    // and those beside the fourth point.
     int before[kMaxManifoldPoints], after[kMaxManifoldPoints], next[kMaxManifoldPoints];
-    int corners[3] = {first, second, third};
-    if (corners[0] > corners[1]) std::swap(corners[0], corners[1]);
-    if (corners[1] > corners[2]) std::swap(corners[1], corners[2]);
-    if (corners[0] > corners[1]) std::swap(corners[0], corners[1]);
-    for (int c = 0; c < 3; ++c) {
-        const int from = corners[c], to = corners[c == 2 ? 0 : c + 1];
-        next[from] = to;
-        for (int j = from + 1 == count ? 0 : from + 1; j != to; j = j + 1 == count ? 0 : j + 1) before[j] = from, after[j] = to;
+    auto gainOf = [&](int k) {
+        const Vec2& a = points[before[k]].planar;
+        const double twiceArea = cross2(points[after[k]].planar - a, points[k].planar - a);
+        return -(0.5 * twiceArea);  // twiceArea < 0: 0 − ½·twiceArea
+    };
+    // The triangle counter-clockwise is its corners in cyclic order; each free point's hull
+    // neighbours are the corners around its arc: between the first two, the last two, or (round
+    // the end of the cycle) the last and the first.
+    int c0 = first, c1 = second, c2 = third;
+    if (c0 > c1) std::swap(c0, c1);
+    if (c1 > c2) std::swap(c1, c2);
+    if (c0 > c1) std::swap(c0, c1);
+    next[c0] = c1, next[c1] = c2, next[c2] = c0;
+    for (std::uint32_t m = freeMask; m != 0; m &= m - 1) {
+        const int k = __builtin_ctz(m);
+        const bool firstArc = k > c0 && k < c1, secondArc = k > c1 && k < c2;
+        before[k] = firstArc ? c0 : secondArc ? c1 : c2;
+        after[k] = firstArc ? c1 : secondArc ? c2 : c0;
+        value[k] = gainOf(k);
     }
     int hullSize = 3;
     for (int slot = 3; slot < wanted; ++slot) {
@@ -240,21 +279,18 @@ int rankConvexCycle(const RankPoint* points, int count, const RankingRule& rule,
             return wanted;
         }
         bestGain = 0;
-        for (std::uint32_t m = freeMask; m != 0; m &= m - 1) {
-            const int k = __builtin_ctz(m);
-            const Vec2& a = points[before[k]].planar;
-            const double twiceArea = cross2(points[after[k]].planar - a, points[k].planar - a);
-            bestGain = std::max(bestGain, value[k] = -(0.5 * twiceArea));  // twiceArea < 0: 0 − ½·twiceArea
-        }
+        for (std::uint32_t m = freeMask; m != 0; m &= m - 1) bestGain = std::max(bestGain, value[__builtin_ctz(m)]);
         if (!(bestGain > areaTolerance)) return -1;
         const int q = pickAtLeast(keep * bestGain);
         chosen[slot] = q, freeMask &= ~(std::uint32_t{1} << q);
-        // q joins the hull between its neighbours: the points of the arc on either side now see q.
+        // q joins the hull between its neighbours: the points of the arc on either side now see q
+        // (read by a later slot only: the last one links q in alone, for the centroid rule).
         const int a = before[q], b = after[q];
-        for (int j = a + 1 == count ? 0 : a + 1; j != q; j = j + 1 == count ? 0 : j + 1) after[j] = q;
-        for (int j = q + 1 == count ? 0 : q + 1; j != b; j = j + 1 == count ? 0 : j + 1) before[j] = q;
         next[a] = q, next[q] = b;
         ++hullSize;
+        if (slot + 1 == wanted) break;
+        for (int j = a + 1 == count ? 0 : a + 1; j != q; j = j + 1 == count ? 0 : j + 1) after[j] = q, value[j] = gainOf(j);
+        for (int j = q + 1 == count ? 0 : q + 1; j != b; j = j + 1 == count ? 0 : j + 1) before[j] = q, value[j] = gainOf(j);
     }
     if (wanted == count || rule.centroidCount == 0 || count > kMaxHull - 2) return wanted;
     // The kept hull as the general path's insertions leave it: from the first point (never
@@ -267,53 +303,95 @@ int rankConvexCycle(const RankPoint* points, int count, const RankingRule& rule,
     return applyCentroidRule(points, count, rule, wanted, chosen, hull, hullSize, free, freeCount);
 }
 
+// isStrictlyConvexCycle's certificate taken vertex by vertex, so that the pass that gathers the
+// points (rankContacts of lifted points) takes it too: the least turn (the cross product of
+// consecutive edges), the sums of the edges' |x| and |y| and the times the edges' direction
+// turns through +x (the times the boundary winds: each turn is less than π where every turn is
+// left). The sums add the edges in the cycle's order (p0→p1 first, the closing edge last); the
+// turns at the first and the last vertex, which need the closing edge, are taken at the end (a
+// least value and a count do not depend on the order).
+class CycleCertificate {
+public:
+    CycleCertificate(const Vec2& p0, const Vec2& p1)
+        : firstX_(p0.x()), firstY_(p0.y()), lastX_(p1.x()), lastY_(p1.y()),
+          outX_(p1.x() - p0.x()), outY_(p1.y() - p0.y()), ex_(outX_), ey_(outY_) {
+        sumX_ += std::abs(outX_), sumY_ += std::abs(outY_);
+    }
+    void add(const Vec2& q) {  // the next vertex: the turn at the previous one
+        const double fx = q.x() - lastX_, fy = q.y() - lastY_;
+        turn(ex_, ey_, fx, fy);
+        sumX_ += std::abs(fx), sumY_ += std::abs(fy);
+        ex_ = fx, ey_ = fy, lastX_ = q.x(), lastY_ = q.y();
+    }
+    bool certified() {
+        const double fx = firstX_ - lastX_, fy = firstY_ - lastY_;  // the closing edge
+        turn(ex_, ey_, fx, fy);
+        sumX_ += std::abs(fx), sumY_ += std::abs(fy);
+        turn(fx, fy, outX_, outY_);
+        // Every difference of two of the points is at most (sumX, sumY)/2 in each coordinate (a
+        // closed polygon's extent is at most half its edges' total), so a computed cross product
+        // of two differences is off by at most ~2 ε·sumX·sumY (ε = 2^-53, three roundings of
+        // each of two products of at most sumX/2·sumY/2, and the result's): the margin
+        // 1e-13·sumX·sumY is over 400 times that. Every turn certain and left, the boundary
+        // winding once: a strictly convex polygon, and (its smallest triangle of vertices is one
+        // of three consecutive ones) every cross product of differences of three of the points
+        // has its true sign. The area stays far from underflow and overflow so that the bound
+        // holds (else: not certified).
+        const double box = sumX_ * sumY_;
+        return upward_ == 1 && box >= 1e-250 && box <= 1e250 && leastTurn_ > 1e-13 * box;
+    }
+
+private:
+    void turn(double ex, double ey, double fx, double fy) {  // e into a vertex, f out of it
+        leastTurn_ = std::min(leastTurn_, ex * fy - ey * fx);
+        upward_ += ey < 0 && fy >= 0;  // exact signs: a rounded difference keeps its sign
+    }
+    double firstX_, firstY_, lastX_, lastY_;
+    double outX_, outY_;  // the edge out of the first vertex
+    double ex_, ey_;      // the edge into the last vertex added
+    double leastTurn_ = INFINITY, sumX_ = 0, sumY_ = 0;
+    int upward_ = 0;
+};
+
+// Whether the ranking of a certified convex cycle can save anything: no given prefix, the
+// points in one buffer, and a slot that reads the kept hull's gains (else there is nothing for
+// the certificate, a pass over the points, to save).
+bool cycleRankingPays(int count, const RankingRule& rule) {
+    const int wanted = std::min(count, rule.maxCount);
+    return rule.fixedCount == 0 && count >= 5 && count <= kMaxManifoldPoints && wanted - 3 - (wanted == count ? 1 : 0) >= 1;
+}
+
+int rankGrowingHull(const RankPoint* points, int count, const RankingRule& rule, int* chosen);
+
 }  // namespace
 
 bool isStrictlyConvexCycle(const RankPoint* points, int count) {
     if (count < 3) return false;
-    // One pass over the edges: the least turn (the cross product of consecutive edges), the sums
-    // of the edges' |x| and |y| and the times the edges' direction turns through +x (the times
-    // the boundary winds: each turn is less than π where every turn is left).
-    double leastTurn = INFINITY, sumX = 0, sumY = 0;
-    int upward = 0;
-    double px = points[0].planar.x(), py = points[0].planar.y();
-    double ex = px - points[count - 1].planar.x(), ey = py - points[count - 1].planar.y();  // the edge into point i
-    for (int i = 0; i < count; ++i) {
-        const int j = i + 1 == count ? 0 : i + 1;
-        const double qx = points[j].planar.x(), qy = points[j].planar.y();
-        const double fx = qx - px, fy = qy - py;  // the edge out of point i
-        leastTurn = std::min(leastTurn, ex * fy - ey * fx);
-        sumX += std::abs(fx), sumY += std::abs(fy);
-        upward += ey < 0 && fy >= 0;  // exact signs: a rounded difference keeps its sign
-        ex = fx, ey = fy, px = qx, py = qy;
-    }
-    // Every difference of two of the points is at most (sumX, sumY)/2 in each coordinate (a
-    // closed polygon's extent is at most half its edges' total), so a computed cross product of
-    // two differences is off by at most ~2 ε·sumX·sumY (ε = 2^-53, three roundings of each of two
-    // products of at most sumX/2·sumY/2, and the result's): the margin 1e-13·sumX·sumY is over
-    // 400 times that. Every turn certain and left, the boundary winding once: a strictly
-    // convex polygon, and (its smallest triangle of vertices is one of three consecutive ones)
-    // every cross product of differences of three of the points has its true sign. The area
-    // stays far from underflow and overflow so that the bound holds (else: not certified).
-    const double box = sumX * sumY;
-    return upward == 1 && box >= 1e-250 && box <= 1e250 && leastTurn > 1e-13 * box;
+    CycleCertificate certificate(points[0].planar, points[1].planar);
+    for (int i = 2; i < count; ++i) certificate.add(points[i].planar);
+    return certificate.certified();
 }
 
 int rankContacts(const RankPoint* points, int count, const RankingRule& rule, int* chosen) {
+    if (rule.fixedCount == 0 && count <= 4 && count <= rule.maxCount) return rankAllOfFew(points, count, rule, chosen);
+    // A convex polygon's vertices in cyclic order (the clip of two faces), where a slot reads the
+    // kept hull's gains. Callgrind: 8 points to a budget of 4 (one such slot) 7421 -> 7330
+    // instructions a box–box query, to a budget of 8 (four) 8883 -> 7532.
+    if (cycleRankingPays(count, rule) && isStrictlyConvexCycle(points, count)) {
+        const int ranked = rankConvexCycle(points, count, rule, std::min(count, rule.maxCount), chosen);
+        if (ranked >= 0) return ranked;
+    }
+    return rankGrowingHull(points, count, rule, chosen);
+}
+
+namespace {
+
+// The general ranking: the kept hull grown slot by slot (rankContacts without its shortcuts).
+int rankGrowingHull(const RankPoint* points, int count, const RankingRule& rule, int* chosen) {
     const int fixed = rule.fixedCount;
-    if (fixed == 0 && count <= 4 && count <= rule.maxCount) return rankAllOfFew(points, count, rule, chosen);
     const int wanted = std::min(count, rule.maxCount);
     if (fixed > 0 && fixed >= wanted) return fixed;
     if (wanted <= 0) return 0;
-    // A convex polygon's vertices in cyclic order (the clip of two faces), where a slot reads the
-    // kept hull's gains (else there is nothing for the certificate, a pass over the points, to
-    // save). Callgrind: 8 points to a budget of 4 (one such slot) 7421 -> 7330 instructions a
-    // box–box query, to a budget of 8 (four) 8883 -> 7532.
-    if (fixed == 0 && count >= 5 && count <= kMaxManifoldPoints && wanted - 3 - (wanted == count ? 1 : 0) >= 1 &&
-        isStrictlyConvexCycle(points, count)) {
-        const int ranked = rankConvexCycle(points, count, rule, wanted, chosen);
-        if (ranked >= 0) return ranked;
-    }
     const double keep = 1 - rule.hysteresis;
     // The free points (indices, ascending: a tie of identities goes to the lower index), and the
     // value each would add in the current slot (value[k] belongs to free[k]). Walking this list
@@ -459,14 +537,32 @@ int rankContacts(const RankPoint* points, int count, const RankingRule& rule, in
     return applyCentroidRule(points, count, rule, wanted, chosen, hull, hullSize, free, freeCount);
 }
 
+}  // namespace
+
 int rankContacts(const LiftedPoints& points, const RankingRule& rule, int* chosen) {
     const int count = static_cast<int>(points.size());
     RankPoint storage[kMaxManifoldPoints];
     std::vector<RankPoint> heap;
     if (count > kMaxManifoldPoints) heap.resize(count);
     RankPoint* ranked = count > kMaxManifoldPoints ? heap.data() : storage;
-    for (int i = 0; i < count; ++i) ranked[i] = {points[i].planar, points[i].depth, points[i].position.dot(rule.identity)};
-    return rankContacts(ranked, count, rule, chosen);
+    auto gather = [&](int i) {
+        ranked[i] = {points[i].planar, points[i].depth, points[i].position.dot(rule.identity)};
+        return ranked[i].planar;
+    };
+    if (!cycleRankingPays(count, rule)) {
+        for (int i = 0; i < count; ++i) gather(i);
+        return rankContacts(ranked, count, rule, chosen);
+    }
+    // The certificate taken in the pass that gathers the points (rankContacts(RankPoint*)'s
+    // dispatch otherwise): callgrind, two boxes' octagon through the adapter, the gathering and
+    // the certificate 475 -> 408 instructions a query.
+    CycleCertificate certificate(gather(0), gather(1));
+    for (int i = 2; i < count; ++i) certificate.add(gather(i));
+    if (certificate.certified()) {
+        const int ranking = rankConvexCycle(ranked, count, rule, std::min(count, rule.maxCount), chosen);
+        if (ranking >= 0) return ranking;
+    }
+    return rankGrowingHull(ranked, count, rule, chosen);
 }
 
 }  // namespace gdc::detail
