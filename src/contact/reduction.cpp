@@ -212,12 +212,9 @@ int rankConvexCycle(const RankPoint* points, int count, const RankingRule& rule,
     auto pickLeaderOrAtLeast = [&](const Leader& leader, double band) {
         return leader.alone(band) ? leader.index : pickAtLeast(band);
     };
-    double deepest = -INFINITY;
     Leader deepestLeader;
-    for (int k = 0; k < count; ++k) {
-        deepest = std::max(deepest, value[k] = points[k].depth);
-        deepestLeader.see(k, value[k]);
-    }
+    for (int k = 0; k < count; ++k) deepestLeader.see(k, value[k] = points[k].depth);
+    const double deepest = deepestLeader.top;  // std::max over the depths: NaN passed over, ties kept
     // A non-finite depth finds no first point: the general path answers as it always did. Every
     // later pick finds one: the certificate held, so the points are finite, and the band
     // (keep = 1 − hysteresis, within [0.9, 1] by Settings) admits at least the best value.
@@ -265,13 +262,13 @@ int rankConvexCycle(const RankPoint* points, int count, const RankingRule& rule,
     if (c1 > c2) std::swap(c1, c2);
     if (c0 > c1) std::swap(c0, c1);
     next[c0] = c1, next[c1] = c2, next[c2] = c0;
-    for (std::uint32_t m = freeMask; m != 0; m &= m - 1) {
-        const int k = __builtin_ctz(m);
-        const bool firstArc = k > c0 && k < c1, secondArc = k > c1 && k < c2;
-        before[k] = firstArc ? c0 : secondArc ? c1 : c2;
-        after[k] = firstArc ? c1 : secondArc ? c2 : c0;
-        value[k] = gainOf(k);
-    }
+    auto arc = [&](int from, int begin, int end, int to) {  // the points begin..end-1 lie between from and to
+        for (int k = begin; k < end; ++k) before[k] = from, after[k] = to, value[k] = gainOf(k);
+    };
+    arc(c0, c0 + 1, c1, c1);
+    arc(c1, c1 + 1, c2, c2);
+    arc(c2, c2 + 1, count, c0);
+    arc(c2, 0, c0, c0);
     int hullSize = 3;
     for (int slot = 3; slot < wanted; ++slot) {
         if (slot + 1 == count) {  // every point kept: no centroid rule
@@ -312,22 +309,18 @@ int rankConvexCycle(const RankPoint* points, int count, const RankingRule& rule,
 // least value and a count do not depend on the order).
 class CycleCertificate {
 public:
-    CycleCertificate(const Vec2& p0, const Vec2& p1)
-        : firstX_(p0.x()), firstY_(p0.y()), lastX_(p1.x()), lastY_(p1.y()),
-          outX_(p1.x() - p0.x()), outY_(p1.y() - p0.y()), ex_(outX_), ey_(outY_) {
-        sumX_ += std::abs(outX_), sumY_ += std::abs(outY_);
-    }
+    CycleCertificate(const Vec2& p0, const Vec2& p1) : first_(p0), last_(p1), out_(p1 - p0), in_(out_), sum_(out_.cwiseAbs()) {}
     void add(const Vec2& q) {  // the next vertex: the turn at the previous one
-        const double fx = q.x() - lastX_, fy = q.y() - lastY_;
-        turn(ex_, ey_, fx, fy);
-        sumX_ += std::abs(fx), sumY_ += std::abs(fy);
-        ex_ = fx, ey_ = fy, lastX_ = q.x(), lastY_ = q.y();
+        const Vec2 edge = q - last_;
+        turn(in_, edge);
+        sum_ += edge.cwiseAbs();  // x and y each summed as two scalars would be (IEEE, lane by lane)
+        in_ = edge, last_ = q;
     }
     bool certified() {
-        const double fx = firstX_ - lastX_, fy = firstY_ - lastY_;  // the closing edge
-        turn(ex_, ey_, fx, fy);
-        sumX_ += std::abs(fx), sumY_ += std::abs(fy);
-        turn(fx, fy, outX_, outY_);
+        const Vec2 closing = first_ - last_;
+        turn(in_, closing);
+        sum_ += closing.cwiseAbs();
+        turn(closing, out_);
         // Every difference of two of the points is at most (sumX, sumY)/2 in each coordinate (a
         // closed polygon's extent is at most half its edges' total), so a computed cross product
         // of two differences is off by at most ~2 ε·sumX·sumY (ε = 2^-53, three roundings of
@@ -337,19 +330,20 @@ public:
         // of three consecutive ones) every cross product of differences of three of the points
         // has its true sign. The area stays far from underflow and overflow so that the bound
         // holds (else: not certified).
-        const double box = sumX_ * sumY_;
+        const double box = sum_.x() * sum_.y();
         return upward_ == 1 && box >= 1e-250 && box <= 1e250 && leastTurn_ > 1e-13 * box;
     }
 
 private:
-    void turn(double ex, double ey, double fx, double fy) {  // e into a vertex, f out of it
-        leastTurn_ = std::min(leastTurn_, ex * fy - ey * fx);
-        upward_ += ey < 0 && fy >= 0;  // exact signs: a rounded difference keeps its sign
+    void turn(const Vec2& e, const Vec2& f) {  // e into a vertex, f out of it
+        leastTurn_ = std::min(leastTurn_, e.x() * f.y() - e.y() * f.x());
+        upward_ += e.y() < 0 && f.y() >= 0;  // exact signs: a rounded difference keeps its sign
     }
-    double firstX_, firstY_, lastX_, lastY_;
-    double outX_, outY_;  // the edge out of the first vertex
-    double ex_, ey_;      // the edge into the last vertex added
-    double leastTurn_ = INFINITY, sumX_ = 0, sumY_ = 0;
+    Vec2 first_, last_;
+    Vec2 out_;  // the edge out of the first vertex
+    Vec2 in_;   // the edge into the last vertex added
+    Vec2 sum_;  // the edges' |x| and |y| summed
+    double leastTurn_ = INFINITY;
     int upward_ = 0;
 };
 
