@@ -198,6 +198,22 @@ int applyCentroidRule(const RankPoint* points, int count, const RankingRule& rul
 }
 
 
+// Where one value alone reaches a pick's band, that value is the largest and every other is
+// below the band: the pick is that point, without a pass over the candidates' identities.
+// `Leader` follows the largest value and the largest of the others as the values are made
+// (NaN, which reaches no band, is passed over); the band is the one pickAtLeast is given.
+// Callgrind, two boxes' octagon (tilted, so one deepest point, one farthest): the first two
+// picks, 15 visits of pickAtLeast a ranking, become one test each.
+struct Leader {
+    double top = -INFINITY, runnerUp = -INFINITY;
+    int index = -1;
+    void see(int k, double v) {
+        if (v > top) runnerUp = top, top = v, index = k;
+        else if (v > runnerUp) runnerUp = v;
+    }
+    bool alone(double band) const { return index >= 0 && top >= band && !(runnerUp >= band); }
+};
+
 // The greedy ranking of rankContacts for points certified a strictly convex cycle
 // (isStrictlyConvexCycle: the clip of two faces) with no given prefix and at least one slot that
 // reads the kept hull's gains. Each point is a vertex of the polygon, so it sees exactly one edge
@@ -206,9 +222,11 @@ int applyCentroidRule(const RankPoint* points, int count, const RankingRule& rul
 // certified), so every value, comparison and choice is the general path's. The kept hull is links
 // between indices, the free points a bit set (ascending, as the general path's list). Returns -1
 // where a slot finds no area to gain (a sliver: the spread rule), and the general path ranks.
-// Inlined into both entries: its call and frame cost the lifted points' ranking ≈ 37
+// `deepestLeader`: the depths' leader, seen in index order (the entries take it in a pass they
+// make anyway). Inlined into both entries: its call and frame cost the lifted points' ranking ≈ 37
 // instructions a query (callgrind, two boxes' octagon through the adapter).
-[[gnu::always_inline]] inline int rankConvexCycle(const RankPoint* points, int count, const RankingRule& rule, int wanted, int* chosen) {
+[[gnu::always_inline]] inline int rankConvexCycle(const RankPoint* points, int count, const RankingRule& rule, int wanted,
+                                                  const Leader& deepestLeader, int* chosen) {
     const double keep = 1 - rule.hysteresis;
     std::uint32_t freeMask = (std::uint32_t{1} << count) - 1;
     double value[kMaxManifoldPoints];
@@ -222,31 +240,19 @@ int applyCentroidRule(const RankPoint* points, int count, const RankingRule& rul
         }
         return best;
     };
-    // Where one value alone reaches a pick's band, that value is the largest and every other is
-    // below the band: the pick is that point, without a pass over the candidates' identities.
-    // `Leader` follows the largest value and the largest of the others as the values are made
-    // (NaN, which reaches no band, is passed over); the band is the one pickAtLeast is given.
-    // Callgrind, two boxes' octagon (tilted, so one deepest point, one farthest): the first two
-    // picks, 15 visits of pickAtLeast a ranking, become one test each.
-    struct Leader {
-        double top = -INFINITY, runnerUp = -INFINITY;
-        int index = -1;
-        void see(int k, double v) {
-            if (v > top) runnerUp = top, top = v, index = k;
-            else if (v > runnerUp) runnerUp = v;
-        }
-        bool alone(double band) const { return index >= 0 && top >= band && !(runnerUp >= band); }
-    };
     auto pickLeaderOrAtLeast = [&](const Leader& leader, double band) {
         return leader.alone(band) ? leader.index : pickAtLeast(band);
     };
-    Leader deepestLeader;
-    for (int k = 0; k < count; ++k) deepestLeader.see(k, value[k] = points[k].depth);
     const double deepest = deepestLeader.top;  // std::max over the depths: NaN passed over, ties kept
     // A non-finite depth finds no first point: the general path answers as it always did. Every
     // later pick finds one: the certificate held, so the points are finite, and the band
     // (keep = 1 − hysteresis, within [0.9, 1] by Settings) admits at least the best value.
-    const int first = pickLeaderOrAtLeast(deepestLeader, deepest - rule.tolerance);
+    const double band = deepest - rule.tolerance;
+    int first = deepestLeader.index;
+    if (!deepestLeader.alone(band)) {
+        for (int k = 0; k < count; ++k) value[k] = points[k].depth;
+        first = pickAtLeast(band);
+    }
     if (first < 0) return -1;
     chosen[0] = first, freeMask &= ~(std::uint32_t{1} << first);
     const Vec2 p0 = points[first].planar;
@@ -401,7 +407,9 @@ int rankContacts(const RankPoint* points, int count, const RankingRule& rule, in
     // kept hull's gains. Callgrind: 8 points to a budget of 4 (one such slot) 7421 -> 7330
     // instructions a box–box query, to a budget of 8 (four) 8883 -> 7532.
     if (cycleRankingPays(count, rule) && isStrictlyConvexCycle(points, count)) {
-        const int ranked = rankConvexCycle(points, count, rule, std::min(count, rule.maxCount), chosen);
+        Leader deepest;
+        for (int k = 0; k < count; ++k) deepest.see(k, points[k].depth);
+        const int ranked = rankConvexCycle(points, count, rule, std::min(count, rule.maxCount), deepest, chosen);
         if (ranked >= 0) return ranked;
     }
     return rankGrowingHull(points, count, rule, chosen);
@@ -579,10 +587,14 @@ int rankContacts(const LiftedPoints& points, const RankingRule& rule, int* chose
     // The certificate taken in the pass that gathers the points (rankContacts(RankPoint*)'s
     // dispatch otherwise): callgrind, two boxes' octagon through the adapter, the gathering and
     // the certificate 475 -> 408 instructions a query.
-    CycleCertificate certificate(gather(0), gather(1));
-    for (int i = 2; i < count; ++i) certificate.add(gather(i));
+    Leader deepest;  // the deepest point's leader too
+    const Vec2 p0 = gather(0);
+    deepest.see(0, ranked[0].depth);
+    CycleCertificate certificate(p0, gather(1));
+    deepest.see(1, ranked[1].depth);
+    for (int i = 2; i < count; ++i) certificate.add(gather(i)), deepest.see(i, ranked[i].depth);
     if (certificate.certified()) {
-        const int ranking = rankConvexCycle(ranked, count, rule, std::min(count, rule.maxCount), chosen);
+        const int ranking = rankConvexCycle(ranked, count, rule, std::min(count, rule.maxCount), deepest, chosen);
         if (ranking >= 0) return ranking;
     }
     return rankGrowingHull(ranked, count, rule, chosen);
