@@ -256,13 +256,14 @@ struct Leader {
     if (first < 0) return -1;
     chosen[0] = first, freeMask &= ~(std::uint32_t{1} << first);
     const Vec2 p0 = points[first].planar;
-    double farthest = 0;
     Leader farthestLeader;
     for (std::uint32_t m = freeMask; m != 0; m &= m - 1) {
         const int k = __builtin_ctz(m);
-        farthest = std::max(farthest, value[k] = (points[k].planar - p0).squaredNorm());
-        farthestLeader.see(k, value[k]);
+        farthestLeader.see(k, value[k] = (points[k].planar - p0).squaredNorm());
     }
+    // The std::max of 0 and the squared distances (finite, ≥ +0 where the certificate held): the
+    // leader's top, or 0 if that is below.
+    const double farthest = std::max(0.0, farthestLeader.top);
     const int second = pickLeaderOrAtLeast(farthestLeader, keep * keep * farthest);
     chosen[1] = second, freeMask &= ~(std::uint32_t{1} << second);
     const double areaTolerance = rule.tolerance * std::sqrt(farthest);
@@ -296,8 +297,14 @@ struct Leader {
     if (c1 > c2) std::swap(c1, c2);
     if (c0 > c1) std::swap(c0, c1);
     next[c0] = c1, next[c1] = c2, next[c2] = c0;
+    // The first slot's best gain is made with its gains (the maximum of finite positive values —
+    // the certificate makes each twiceArea < 0 — in any order).
+    double firstSlotBest = 0;
     auto arc = [&](int from, int begin, int end, int to) {  // the points begin..end-1 lie between from and to
-        for (int k = begin; k < end; ++k) before[k] = from, after[k] = to, value[k] = gainOf(k);
+        for (int k = begin; k < end; ++k) {
+            before[k] = from, after[k] = to;
+            firstSlotBest = std::max(firstSlotBest, value[k] = gainOf(k));
+        }
     };
     arc(c0, c0 + 1, c1, c1);
     arc(c1, c1 + 1, c2, c2);
@@ -309,8 +316,11 @@ struct Leader {
             chosen[slot] = __builtin_ctz(freeMask);
             return wanted;
         }
-        bestGain = 0;
-        for (std::uint32_t m = freeMask; m != 0; m &= m - 1) bestGain = std::max(bestGain, value[__builtin_ctz(m)]);
+        bestGain = firstSlotBest;
+        if (slot > 3) {
+            bestGain = 0;
+            for (std::uint32_t m = freeMask; m != 0; m &= m - 1) bestGain = std::max(bestGain, value[__builtin_ctz(m)]);
+        }
         if (!(bestGain > areaTolerance)) return -1;
         const int q = pickAtLeast(keep * bestGain);
         chosen[slot] = q, freeMask &= ~(std::uint32_t{1} << q);
