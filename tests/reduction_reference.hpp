@@ -302,6 +302,27 @@ inline int rankContacts(const RankPoint* points, int count, const RankingRule& r
 // The body-pair reduction's fill by area from a given triangle (src/body_pair_reduction.cpp's
 // fillByArea before commit "rankContacts from a given prefix"), verbatim with its helpers: the
 // reference that tests/reduction_test.cpp compares detail::rankContacts with a prefix against.
+// The certificate of a strictly convex cycle as reduction.cpp had it at ac53fc8 (one loop over
+// the edges), verbatim: the library's CycleCertificate, taken vertex by vertex, must agree.
+inline bool isStrictlyConvexCycle(const RankPoint* points, int count) {
+    if (count < 3) return false;
+    double leastTurn = INFINITY, sumX = 0, sumY = 0;
+    int upward = 0;
+    double px = points[0].planar.x(), py = points[0].planar.y();
+    double ex = px - points[count - 1].planar.x(), ey = py - points[count - 1].planar.y();  // the edge into point i
+    for (int i = 0; i < count; ++i) {
+        const int j = i + 1 == count ? 0 : i + 1;
+        const double qx = points[j].planar.x(), qy = points[j].planar.y();
+        const double fx = qx - px, fy = qy - py;  // the edge out of point i
+        leastTurn = std::min(leastTurn, ex * fy - ey * fx);
+        sumX += std::abs(fx), sumY += std::abs(fy);
+        upward += ey < 0 && fy >= 0;  // exact signs: a rounded difference keeps its sign
+        ex = fx, ey = fy, px = qx, py = qy;
+    }
+    const double box = sumX * sumY;
+    return upward == 1 && box >= 1e-250 && box <= 1e250 && leastTurn > 1e-13 * box;
+}
+
 namespace fill {
 namespace {
 // Convex hull (counter-clockwise, monotone chain) of the points `indices[0, n)` of `points`, as

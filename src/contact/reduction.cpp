@@ -104,6 +104,31 @@ bool contains(const Vec2* hull, int size, const Vec2& p, double slack) {
     return true;
 }
 
+// Whether the centroid rule leaves the kept points as they are for the common reason: with a
+// tolerance ≥ 0, one or two centroids each on the inner side of every kept edge pass each of
+// applyCentroidRule's tests (every edge `continue`s). One pass over the edges makes the same
+// cross products, each edge's difference once for both centroids; false: the full tests decide.
+// Callgrind, an octagon kept to 6 points with two centroids: the rule's 300 instructions a
+// query -> ≈ 200 (called before the rule's own frame is set up).
+bool centroidsInsideKeptHull(const RankingRule& rule, const Vec2* hull, int keptSize) {
+    const int centroids = std::min(rule.centroidCount, 4);
+    if (centroids < 1 || centroids > 2 || keptSize < 3 || !(rule.tolerance >= 0)) return false;
+    // The two centroids' x and y side by side: each lane computes cross2(edge, centroid − a) as
+    // edge.x·(centroid − a).y − edge.y·(centroid − a).x, the same IEEE operations in the same order.
+    const Eigen::Array2d x(rule.centroids[0].x(), rule.centroids[centroids - 1].x());
+    const Eigen::Array2d y(rule.centroids[0].y(), rule.centroids[centroids - 1].y());
+    Vec2 a = hull[keptSize - 1];
+    bool inside = true;
+    for (int e = 0; e < keptSize; ++e) {  // the kept edge from vertex e − 1 to vertex e
+        const Vec2 b = hull[e];
+        const Vec2 edge = b - a;
+        const Eigen::Array2d side = edge.x() * (y - a.y()) - edge.y() * (x - a.x());
+        inside &= (side >= 0).all();
+        a = b;
+    }
+    return inside;
+}
+
 // The centroid rule: a body whose centroid projects inside the whole contact polygon rests on
 // it; if the kept points leave the centroid outside, that body would tip over an edge the polygon
 // does not have. Then one kept point (never the first) is swapped for the point that brings every
@@ -113,6 +138,7 @@ int applyCentroidRule(const RankPoint* points, int count, const RankingRule& rul
                       std::array<Vec2, kMaxHull>& hull, int keptSize, const int* free, int freeCount) {
     const int centroids = std::min(rule.centroidCount, 4);
     std::array<Vec2, kMaxHull> scratch;
+    if (centroidsInsideKeptHull(rule, hull.data(), keptSize)) return wanted;
     // A centroid needs the rule only if it is outside the kept hull and a free point lies beyond a
     // kept edge it is outside of (else that edge's line separates it from every point: it is
     // outside the whole polygon too) — two cheap tests before the whole polygon is built.
@@ -172,6 +198,22 @@ int applyCentroidRule(const RankPoint* points, int count, const RankingRule& rul
 }
 
 
+// Where one value alone reaches a pick's band, that value is the largest and every other is
+// below the band: the pick is that point, without a pass over the candidates' identities.
+// `Leader` follows the largest value and the largest of the others as the values are made
+// (NaN, which reaches no band, is passed over); the band is the one pickAtLeast is given.
+// Callgrind, two boxes' octagon (tilted, so one deepest point, one farthest): the first two
+// picks, 15 visits of pickAtLeast a ranking, become one test each.
+struct Leader {
+    double top = -INFINITY, runnerUp = -INFINITY;
+    int index = -1;
+    void see(int k, double v) {
+        if (v > top) runnerUp = top, top = v, index = k;
+        else if (v > runnerUp) runnerUp = v;
+    }
+    bool alone(double band) const { return index >= 0 && top >= band && !(runnerUp >= band); }
+};
+
 // The greedy ranking of rankContacts for points certified a strictly convex cycle
 // (isStrictlyConvexCycle: the clip of two faces) with no given prefix and at least one slot that
 // reads the kept hull's gains. Each point is a vertex of the polygon, so it sees exactly one edge
@@ -180,7 +222,11 @@ int applyCentroidRule(const RankPoint* points, int count, const RankingRule& rul
 // certified), so every value, comparison and choice is the general path's. The kept hull is links
 // between indices, the free points a bit set (ascending, as the general path's list). Returns -1
 // where a slot finds no area to gain (a sliver: the spread rule), and the general path ranks.
-int rankConvexCycle(const RankPoint* points, int count, const RankingRule& rule, int wanted, int* chosen) {
+// `deepestLeader`: the depths' leader, seen in index order (the entries take it in a pass they
+// make anyway). Inlined into both entries: its call and frame cost the lifted points' ranking ≈ 37
+// instructions a query (callgrind, two boxes' octagon through the adapter).
+[[gnu::always_inline]] inline int rankConvexCycle(const RankPoint* points, int count, const RankingRule& rule, int wanted,
+                                                  const Leader& deepestLeader, int* chosen) {
     const double keep = 1 - rule.hysteresis;
     std::uint32_t freeMask = (std::uint32_t{1} << count) - 1;
     double value[kMaxManifoldPoints];
@@ -194,21 +240,31 @@ int rankConvexCycle(const RankPoint* points, int count, const RankingRule& rule,
         }
         return best;
     };
-    double deepest = -INFINITY;
-    for (int k = 0; k < count; ++k) deepest = std::max(deepest, value[k] = points[k].depth);
+    auto pickLeaderOrAtLeast = [&](const Leader& leader, double band) {
+        return leader.alone(band) ? leader.index : pickAtLeast(band);
+    };
+    const double deepest = deepestLeader.top;  // std::max over the depths: NaN passed over, ties kept
     // A non-finite depth finds no first point: the general path answers as it always did. Every
     // later pick finds one: the certificate held, so the points are finite, and the band
     // (keep = 1 − hysteresis, within [0.9, 1] by Settings) admits at least the best value.
-    const int first = pickAtLeast(deepest - rule.tolerance);
+    const double band = deepest - rule.tolerance;
+    int first = deepestLeader.index;
+    if (!deepestLeader.alone(band)) {
+        for (int k = 0; k < count; ++k) value[k] = points[k].depth;
+        first = pickAtLeast(band);
+    }
     if (first < 0) return -1;
     chosen[0] = first, freeMask &= ~(std::uint32_t{1} << first);
     const Vec2 p0 = points[first].planar;
-    double farthest = 0;
+    Leader farthestLeader;
     for (std::uint32_t m = freeMask; m != 0; m &= m - 1) {
         const int k = __builtin_ctz(m);
-        farthest = std::max(farthest, value[k] = (points[k].planar - p0).squaredNorm());
+        farthestLeader.see(k, value[k] = (points[k].planar - p0).squaredNorm());
     }
-    const int second = pickAtLeast(keep * keep * farthest);
+    // The std::max of 0 and the squared distances (finite, ≥ +0 where the certificate held): the
+    // leader's top, or 0 if that is below.
+    const double farthest = std::max(0.0, farthestLeader.top);
+    const int second = pickLeaderOrAtLeast(farthestLeader, keep * keep * farthest);
     chosen[1] = second, freeMask &= ~(std::uint32_t{1} << second);
     const double areaTolerance = rule.tolerance * std::sqrt(farthest);
     // The third point: the largest triangle on the segment.
@@ -221,99 +277,164 @@ int rankConvexCycle(const RankPoint* points, int count, const RankingRule& rule,
     if (!(bestGain > areaTolerance)) return -1;
     const int third = pickAtLeast(keep * bestGain);
     chosen[2] = third, freeMask &= ~(std::uint32_t{1} << third);
-    // The triangle counter-clockwise is its corners in cyclic order; each free point's hull
-    // neighbours are the corners around its arc.
+    // A free point's gain: the triangle on the kept edge between its hull neighbours. It changes
+    // only when a neighbour does (the arcs on either side of the point taken), so each slot
+    // recomputes those alone — the same expression of the same neighbours, so the same bits — and
+    // the best gain is the maximum of the values kept, in the same order; the last slot updates
+    // nothing. Two boxes' octagon to a budget of 6: 12 gains a ranking, now the first slot's 5
+    // and those beside the fourth point.
     int before[kMaxManifoldPoints], after[kMaxManifoldPoints], next[kMaxManifoldPoints];
-    int corners[3] = {first, second, third};
-    if (corners[0] > corners[1]) std::swap(corners[0], corners[1]);
-    if (corners[1] > corners[2]) std::swap(corners[1], corners[2]);
-    if (corners[0] > corners[1]) std::swap(corners[0], corners[1]);
-    for (int c = 0; c < 3; ++c) {
-        const int from = corners[c], to = corners[c == 2 ? 0 : c + 1];
-        next[from] = to;
-        for (int j = from + 1 == count ? 0 : from + 1; j != to; j = j + 1 == count ? 0 : j + 1) before[j] = from, after[j] = to;
-    }
+    auto gainOf = [&](int k) {
+        const Vec2& a = points[before[k]].planar;
+        const double twiceArea = cross2(points[after[k]].planar - a, points[k].planar - a);
+        return -(0.5 * twiceArea);  // twiceArea < 0: 0 − ½·twiceArea
+    };
+    // The triangle counter-clockwise is its corners in cyclic order; each free point's hull
+    // neighbours are the corners around its arc: between the first two, the last two, or (round
+    // the end of the cycle) the last and the first.
+    int c0 = first, c1 = second, c2 = third;
+    if (c0 > c1) std::swap(c0, c1);
+    if (c1 > c2) std::swap(c1, c2);
+    if (c0 > c1) std::swap(c0, c1);
+    next[c0] = c1, next[c1] = c2, next[c2] = c0;
+    // The first slot's gains are made here, and with them their leader: its top is the slot's
+    // best gain (the maximum of finite positive values — the certificate makes each twiceArea
+    // < 0 — in any order), and a gain alone in the band is the pick (callgrind: the first slot's
+    // max pass and, where one gain leads, its pick pass saved, ≈ 25 instructions a query).
+    Leader firstSlot;
+    auto arc = [&](int from, int begin, int end, int to) {  // the points begin..end-1 lie between from and to
+        for (int k = begin; k < end; ++k) {
+            before[k] = from, after[k] = to;
+            firstSlot.see(k, value[k] = gainOf(k));
+        }
+    };
+    arc(c0, c0 + 1, c1, c1);
+    arc(c1, c1 + 1, c2, c2);
+    arc(c2, c2 + 1, count, c0);
+    arc(c2, 0, c0, c0);
     int hullSize = 3;
     for (int slot = 3; slot < wanted; ++slot) {
         if (slot + 1 == count) {  // every point kept: no centroid rule
             chosen[slot] = __builtin_ctz(freeMask);
             return wanted;
         }
-        bestGain = 0;
-        for (std::uint32_t m = freeMask; m != 0; m &= m - 1) {
-            const int k = __builtin_ctz(m);
-            const Vec2& a = points[before[k]].planar;
-            const double twiceArea = cross2(points[after[k]].planar - a, points[k].planar - a);
-            bestGain = std::max(bestGain, value[k] = -(0.5 * twiceArea));  // twiceArea < 0: 0 − ½·twiceArea
+        bestGain = std::max(0.0, firstSlot.top);
+        if (slot > 3) {
+            bestGain = 0;
+            for (std::uint32_t m = freeMask; m != 0; m &= m - 1) bestGain = std::max(bestGain, value[__builtin_ctz(m)]);
         }
         if (!(bestGain > areaTolerance)) return -1;
-        const int q = pickAtLeast(keep * bestGain);
+        const int q = slot == 3 ? pickLeaderOrAtLeast(firstSlot, keep * bestGain) : pickAtLeast(keep * bestGain);
         chosen[slot] = q, freeMask &= ~(std::uint32_t{1} << q);
-        // q joins the hull between its neighbours: the points of the arc on either side now see q.
+        // q joins the hull between its neighbours: the points of the arc on either side now see q
+        // (read by a later slot only: the last one links q in alone, for the centroid rule).
         const int a = before[q], b = after[q];
-        for (int j = a + 1 == count ? 0 : a + 1; j != q; j = j + 1 == count ? 0 : j + 1) after[j] = q;
-        for (int j = q + 1 == count ? 0 : q + 1; j != b; j = j + 1 == count ? 0 : j + 1) before[j] = q;
         next[a] = q, next[q] = b;
         ++hullSize;
+        if (slot + 1 == wanted) break;
+        for (int j = a + 1 == count ? 0 : a + 1; j != q; j = j + 1 == count ? 0 : j + 1) after[j] = q, value[j] = gainOf(j);
+        for (int j = q + 1 == count ? 0 : q + 1; j != b; j = j + 1 == count ? 0 : j + 1) before[j] = q, value[j] = gainOf(j);
     }
     if (wanted == count || rule.centroidCount == 0 || count > kMaxHull - 2) return wanted;
     // The kept hull as the general path's insertions leave it: from the first point (never
     // dropped), counter-clockwise; the free points ascending.
     std::array<Vec2, kMaxHull> hull;
     for (int e = 0, vertex = first; e < hullSize; ++e, vertex = next[vertex]) hull[e] = points[vertex].planar;
+    if (centroidsInsideKeptHull(rule, hull.data(), hullSize)) return wanted;  // (applyCentroidRule's first test)
     int free[kMaxManifoldPoints];
     int freeCount = 0;
     for (std::uint32_t m = freeMask; m != 0; m &= m - 1) free[freeCount++] = __builtin_ctz(m);
     return applyCentroidRule(points, count, rule, wanted, chosen, hull, hullSize, free, freeCount);
 }
 
+// isStrictlyConvexCycle's certificate taken vertex by vertex, so that the pass that gathers the
+// points (rankContacts of lifted points) takes it too: the least turn (the cross product of
+// consecutive edges), the sums of the edges' |x| and |y| and the times the edges' direction
+// turns through +x (the times the boundary winds: each turn is less than π where every turn is
+// left). The sums add the edges in the cycle's order (p0→p1 first, the closing edge last); the
+// turns at the first and the last vertex, which need the closing edge, are taken at the end (a
+// least value and a count do not depend on the order).
+class CycleCertificate {
+public:
+    CycleCertificate(const Vec2& p0, const Vec2& p1) : first_(p0), last_(p1), out_(p1 - p0), in_(out_), sum_(out_.cwiseAbs()) {}
+    void add(const Vec2& q) {  // the next vertex: the turn at the previous one
+        const Vec2 edge = q - last_;
+        turn(in_, edge);
+        sum_ += edge.cwiseAbs();  // x and y each summed as two scalars would be (IEEE, lane by lane)
+        in_ = edge, last_ = q;
+    }
+    bool certified() {
+        const Vec2 closing = first_ - last_;
+        turn(in_, closing);
+        sum_ += closing.cwiseAbs();
+        turn(closing, out_);
+        // Every difference of two of the points is at most (sumX, sumY)/2 in each coordinate (a
+        // closed polygon's extent is at most half its edges' total), so a computed cross product
+        // of two differences is off by at most ~2 ε·sumX·sumY (ε = 2^-53, three roundings of
+        // each of two products of at most sumX/2·sumY/2, and the result's): the margin
+        // 1e-13·sumX·sumY is over 400 times that. Every turn certain and left, the boundary
+        // winding once: a strictly convex polygon, and (its smallest triangle of vertices is one
+        // of three consecutive ones) every cross product of differences of three of the points
+        // has its true sign. The area stays far from underflow and overflow so that the bound
+        // holds (else: not certified).
+        const double box = sum_.x() * sum_.y();
+        return upward_ == 1 && box >= 1e-250 && box <= 1e250 && leastTurn_ > 1e-13 * box;
+    }
+
+private:
+    void turn(const Vec2& e, const Vec2& f) {  // e into a vertex, f out of it
+        leastTurn_ = std::min(leastTurn_, e.x() * f.y() - e.y() * f.x());
+        upward_ += e.y() < 0 && f.y() >= 0;  // exact signs: a rounded difference keeps its sign
+    }
+    Vec2 first_, last_;
+    Vec2 out_;  // the edge out of the first vertex
+    Vec2 in_;   // the edge into the last vertex added
+    Vec2 sum_;  // the edges' |x| and |y| summed
+    double leastTurn_ = INFINITY;
+    int upward_ = 0;
+};
+
+// Whether the ranking of a certified convex cycle can save anything: no given prefix, the
+// points in one buffer, and a slot that reads the kept hull's gains (else there is nothing for
+// the certificate, a pass over the points, to save).
+bool cycleRankingPays(int count, const RankingRule& rule) {
+    const int wanted = std::min(count, rule.maxCount);
+    return rule.fixedCount == 0 && count >= 5 && count <= kMaxManifoldPoints && wanted - 3 - (wanted == count ? 1 : 0) >= 1;
+}
+
+int rankGrowingHull(const RankPoint* points, int count, const RankingRule& rule, int* chosen);
+
 }  // namespace
 
 bool isStrictlyConvexCycle(const RankPoint* points, int count) {
     if (count < 3) return false;
-    // One pass over the edges: the least turn (the cross product of consecutive edges), the sums
-    // of the edges' |x| and |y| and the times the edges' direction turns through +x (the times
-    // the boundary winds: each turn is less than π where every turn is left).
-    double leastTurn = INFINITY, sumX = 0, sumY = 0;
-    int upward = 0;
-    double px = points[0].planar.x(), py = points[0].planar.y();
-    double ex = px - points[count - 1].planar.x(), ey = py - points[count - 1].planar.y();  // the edge into point i
-    for (int i = 0; i < count; ++i) {
-        const int j = i + 1 == count ? 0 : i + 1;
-        const double qx = points[j].planar.x(), qy = points[j].planar.y();
-        const double fx = qx - px, fy = qy - py;  // the edge out of point i
-        leastTurn = std::min(leastTurn, ex * fy - ey * fx);
-        sumX += std::abs(fx), sumY += std::abs(fy);
-        upward += ey < 0 && fy >= 0;  // exact signs: a rounded difference keeps its sign
-        ex = fx, ey = fy, px = qx, py = qy;
-    }
-    // Every difference of two of the points is at most (sumX, sumY)/2 in each coordinate (a
-    // closed polygon's extent is at most half its edges' total), so a computed cross product of
-    // two differences is off by at most ~2 ε·sumX·sumY (ε = 2^-53, three roundings of each of two
-    // products of at most sumX/2·sumY/2, and the result's): the margin 1e-13·sumX·sumY is over
-    // 400 times that. Every turn certain and left, the boundary winding once: a strictly
-    // convex polygon, and (its smallest triangle of vertices is one of three consecutive ones)
-    // every cross product of differences of three of the points has its true sign. The area
-    // stays far from underflow and overflow so that the bound holds (else: not certified).
-    const double box = sumX * sumY;
-    return upward == 1 && box >= 1e-250 && box <= 1e250 && leastTurn > 1e-13 * box;
+    CycleCertificate certificate(points[0].planar, points[1].planar);
+    for (int i = 2; i < count; ++i) certificate.add(points[i].planar);
+    return certificate.certified();
 }
 
 int rankContacts(const RankPoint* points, int count, const RankingRule& rule, int* chosen) {
+    if (rule.fixedCount == 0 && count <= 4 && count <= rule.maxCount) return rankAllOfFew(points, count, rule, chosen);
+    // A convex polygon's vertices in cyclic order (the clip of two faces), where a slot reads the
+    // kept hull's gains. Callgrind: 8 points to a budget of 4 (one such slot) 7421 -> 7330
+    // instructions a box–box query, to a budget of 8 (four) 8883 -> 7532.
+    if (cycleRankingPays(count, rule) && isStrictlyConvexCycle(points, count)) {
+        Leader deepest;
+        for (int k = 0; k < count; ++k) deepest.see(k, points[k].depth);
+        const int ranked = rankConvexCycle(points, count, rule, std::min(count, rule.maxCount), deepest, chosen);
+        if (ranked >= 0) return ranked;
+    }
+    return rankGrowingHull(points, count, rule, chosen);
+}
+
+namespace {
+
+// The general ranking: the kept hull grown slot by slot (rankContacts without its shortcuts).
+int rankGrowingHull(const RankPoint* points, int count, const RankingRule& rule, int* chosen) {
     const int fixed = rule.fixedCount;
-    if (fixed == 0 && count <= 4 && count <= rule.maxCount) return rankAllOfFew(points, count, rule, chosen);
     const int wanted = std::min(count, rule.maxCount);
     if (fixed > 0 && fixed >= wanted) return fixed;
     if (wanted <= 0) return 0;
-    // A convex polygon's vertices in cyclic order (the clip of two faces), where a slot reads the
-    // kept hull's gains (else there is nothing for the certificate, a pass over the points, to
-    // save). Callgrind: 8 points to a budget of 4 (one such slot) 7421 -> 7330 instructions a
-    // box–box query, to a budget of 8 (four) 8883 -> 7532.
-    if (fixed == 0 && count >= 5 && count <= kMaxManifoldPoints && wanted - 3 - (wanted == count ? 1 : 0) >= 1 &&
-        isStrictlyConvexCycle(points, count)) {
-        const int ranked = rankConvexCycle(points, count, rule, wanted, chosen);
-        if (ranked >= 0) return ranked;
-    }
     const double keep = 1 - rule.hysteresis;
     // The free points (indices, ascending: a tie of identities goes to the lower index), and the
     // value each would add in the current slot (value[k] belongs to free[k]). Walking this list
@@ -459,14 +580,36 @@ int rankContacts(const RankPoint* points, int count, const RankingRule& rule, in
     return applyCentroidRule(points, count, rule, wanted, chosen, hull, hullSize, free, freeCount);
 }
 
+}  // namespace
+
 int rankContacts(const LiftedPoints& points, const RankingRule& rule, int* chosen) {
     const int count = static_cast<int>(points.size());
     RankPoint storage[kMaxManifoldPoints];
     std::vector<RankPoint> heap;
     if (count > kMaxManifoldPoints) heap.resize(count);
     RankPoint* ranked = count > kMaxManifoldPoints ? heap.data() : storage;
-    for (int i = 0; i < count; ++i) ranked[i] = {points[i].planar, points[i].depth, points[i].position.dot(rule.identity)};
-    return rankContacts(ranked, count, rule, chosen);
+    auto gather = [&](int i) {
+        ranked[i] = {points[i].planar, points[i].depth, points[i].position.dot(rule.identity)};
+        return ranked[i].planar;
+    };
+    if (!cycleRankingPays(count, rule)) {
+        for (int i = 0; i < count; ++i) gather(i);
+        return rankContacts(ranked, count, rule, chosen);
+    }
+    // The certificate taken in the pass that gathers the points (rankContacts(RankPoint*)'s
+    // dispatch otherwise): callgrind, two boxes' octagon through the adapter, the gathering and
+    // the certificate 475 -> 408 instructions a query.
+    Leader deepest;  // the deepest point's leader too
+    const Vec2 p0 = gather(0);
+    deepest.see(0, ranked[0].depth);
+    CycleCertificate certificate(p0, gather(1));
+    deepest.see(1, ranked[1].depth);
+    for (int i = 2; i < count; ++i) certificate.add(gather(i)), deepest.see(i, ranked[i].depth);
+    if (certificate.certified()) {
+        const int ranking = rankConvexCycle(ranked, count, rule, std::min(count, rule.maxCount), deepest, chosen);
+        if (ranking >= 0) return ranking;
+    }
+    return rankGrowingHull(ranked, count, rule, chosen);
 }
 
 }  // namespace gdc::detail

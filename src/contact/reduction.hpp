@@ -51,18 +51,13 @@ int rankContacts(const RankPoint* points, int count, const RankingRule& rule, in
 /// Whether `points` (their `planar`), in the given order, are the vertices of a strictly convex
 /// counter-clockwise polygon, certified despite rounding: every turn left by more than the
 /// rounding of any cross product of the points' differences, the boundary winding once. Then every
-/// such cross product the ranking computes has its true sign, so the ranking may take each free
-/// point's gain from its neighbours on the kept hull alone (what the clip of two faces gives).
-bool isStrictlyConvexCycle(const RankPoint* points, int count);
-
-/// Whether `points` (their `planar`), in the given order, are the vertices of a strictly convex
-/// counter-clockwise polygon, certified despite rounding: every turn left by more than the
-/// rounding of any cross product of the points' differences, the boundary winding once. Then every
 /// cross product of three of the points has its true sign, and rankContacts takes each free
 /// point's area gain from its two neighbours on the kept hull alone (the clip of two faces).
 bool isStrictlyConvexCycle(const RankPoint* points, int count);
 
-/// The same for lifted points (their `planar` set when there are 3 or more).
+/// The same for lifted points (their `planar` set when there are 3 or more): each one's identity
+/// is its position along rule.identity, and where the ranking of a convex cycle may pay, the
+/// certificate is taken in the pass that gathers them. The same choices as rankContacts above.
 int rankContacts(const LiftedPoints& points, const RankingRule& rule, int* chosen);
 
 }  // namespace gdc::detail
