@@ -294,20 +294,20 @@ const gdc::detail::AngularTolerance& angularToleranceOf(detail::ThreadCache& cac
 // equal depths: the core's importance order is asked for only among equal depths
 // (ImportanceOrder::AmongEqualDepths, half_space.hpp), so a face whose corners all have different
 // depths (every tilted resting face) is not ranked — the same contacts, in the same order.
-void queryInto(const Polytope& a, const Pose& poseA, const detail::ThreadCache::PlaneSlot& plane, const HalfSpace& b,
+void queryInto(const Polytope& a, const Pose& poseA, const detail::ThreadCache::PlaneSlot& plane,
                const Settings& settings, detail::ThreadCache& cache, Manifold& out) {
     if (gdc::detail::halfSpaceFastPathApplies(a, settings)) {
         if (plane.normalised) {
-            const gdc::detail::UnitHalfSpace unit{plane.normalisedNormal, plane.normalisedOffset};
+            const gdc::detail::UnitHalfSpace& unit = plane.normalisedHalfSpace;
             constexpr gdc::detail::ImportanceOrder order = gdc::detail::ImportanceOrder::AmongEqualDepths;
             // A box's feature takes no AngularTolerance (its lazy bounds): the lookup only for hulls.
             if (a.isBox()) return gdc::detail::collideHalfSpaceInto<order>(a, poseA, unit, settings, out);
             return gdc::detail::collideHalfSpaceInto<order>(a, poseA, unit, settings,
                                                             angularToleranceOf(cache, settings.angularTolerance), out);
         }
-        return gdc::detail::collideHalfSpaceInto(a, poseA, b, settings, out);
+        return gdc::detail::collideHalfSpaceInto(a, poseA, plane.halfSpace, settings, out);
     }
-    out.assignUsed(gdc::collide(a, poseA, b, settings));
+    out.assignUsed(gdc::collide(a, poseA, plane.halfSpace, settings));
 }
 
 // The pair's answer too goes to writeContacts alone, with the caller's limit as the core's budget
@@ -379,13 +379,12 @@ decltype(auto) collideLimited(const Settings& settings, int maxContacts, Collide
     const Polytope& polytope = *pair.polytope1;
     const Pose& pose = pair.pose1();
     const detail::ThreadCache::PlaneSlot& plane = *pair.plane;
-    const HalfSpace halfSpace{plane.unit, plane.raw[3]};
     const Manifold& manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) -> const Manifold& {
         return queryThrough(
             pairCache, o1, o2, cache.scratch, cache.carried,
-            [&](Manifold& out) { queryInto(polytope, pose, plane, halfSpace, pairSettings, cache, out); },
+            [&](Manifold& out) { queryInto(polytope, pose, plane, pairSettings, cache, out); },
             [&](PairCache& entry, Manifold& carried) -> const Manifold& {
-                return gdc::collideInto(polytope, pose, halfSpace, pairSettings, entry, carried);
+                return gdc::collideInto(polytope, pose, plane.halfSpace, pairSettings, entry, carried);
             });
     });
     if (manifold.empty()) return 0;

@@ -5,11 +5,13 @@
 // has no shared side.
 #pragma once
 
+#include <gdcontact/collide.hpp>
 #include <gdcontact/manifold.hpp>
 #include <gdcontact/polytope.hpp>
 #include <gdcontact/settings.hpp>
 
 #include "contact/gauss_map.hpp"
+#include "contact/half_space.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -43,13 +45,14 @@ struct ThreadCache {
 
     struct PlaneSlot {
         double raw[4] = {NAN, NAN, NAN, NAN};  // a, b, c, d; NaN: never equal, so an empty slot never hits
-        Vec3 unit = Vec3::Zero();              // (a, b, c) normalised: the HalfSpace the core is given
+        // (a, b, c) normalised and d: the HalfSpace the core is given. As the core takes them, so
+        // that a query is handed these by reference (copies of them were ~12 instructions a call).
+        HalfSpace halfSpace{Vec3::Zero(), 0.0};
         // The core's own normalisation of that half-space (normaliseHalfSpace, half_space.hpp),
         // made once per plane instead of per call; false where it refuses the plane (then every
         // call takes the core's full path, which says why).
         bool normalised = false;
-        Vec3 normalisedNormal = Vec3::Zero();
-        double normalisedOffset = 0;
+        gdc::detail::UnitHalfSpace normalisedHalfSpace{Vec3::Zero(), 0.0};
     };
     static constexpr int kPlaneSlots = 4;
     PlaneSlot planes[kPlaneSlots];
