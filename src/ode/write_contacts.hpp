@@ -52,8 +52,14 @@ inline Ranked* rankByDepth(const ContactPoint* point, const ContactPoint* end, d
         if (!(depth >= lowest)) continue;
         if (!kCheckedFinite && !isFinite(point->position)) continue;
         Ranked* slot = ++top;  // a pointer walk: indices made g++ unroll into index arithmetic
-        for (; depth > slot[-1].depth; --slot) *slot = slot[-1];
-        *slot = Ranked{depth, point};
+        if (depth > slot[-1].depth) {
+            do {
+                *slot = slot[-1];
+                --slot;
+            } while (depth > slot[-1].depth);
+        }
+        slot->depth = depth;
+        slot->point = point;
     }
     return top;
 }
@@ -132,7 +138,7 @@ inline int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair,
     const Ranked* entry = reverse ? &ranked[written] : &ranked[1];
     const std::ptrdiff_t step = reverse ? -1 : 1;
     char* outBytes = reinterpret_cast<char*>(contact);
-    for (int k = 0; k < written; ++k, outBytes += skip, entry += step) {
+    for (int k = written; k > 0; --k, outBytes += skip, entry += step) {
         const Vec3& position = entry->point->position;
         const DoublePair positionXY = {position.x(), position.y()}, positionZ0 = {position.z(), 0.0};
         std::memcpy(outBytes + offsetof(dContactGeom, pos), &positionXY, sizeof positionXY);
@@ -140,7 +146,9 @@ inline int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair,
         std::memcpy(outBytes + offsetof(dContactGeom, normal), &normalXY, sizeof normalXY);
         std::memcpy(outBytes + offsetof(dContactGeom, normal) + sizeof normalXY, &normalZ0, sizeof normalZ0);
         dContactGeom* out = reinterpret_cast<dContactGeom*>(outBytes);
-        out->depth = std::max(entry->depth, 0.0);
+        // std::max(depth, 0.0) as x86's maxsd computes it (0.0 where 0.0 > depth, else depth: −0.0
+        // stays −0.0), one instruction in place of a compare and a branch.
+        out->depth = 0.0 > entry->depth ? 0.0 : entry->depth;
         std::memcpy(outBytes + offsetof(dContactGeom, g1), &geoms, sizeof geoms);
         out->side1 = -1;
         out->side2 = -1;
