@@ -1,5 +1,5 @@
 // The core's manifold written as ODE's dContactGeoms: the last step of every gdc::ode::collide
-// call (collide.cpp), apart so that tests/ode/write_contacts_test.cpp can hold it against the
+// call (collide.cpp), apart so that tests/ode/adapter_equality_test.cpp can hold it against the
 // former version (tests/ode/write_contacts_reference.hpp) on every kind of manifold.
 #pragma once
 

@@ -1,5 +1,5 @@
 // The adapter's writeContacts as it was at ac53fc8 (src/ode/collide.cpp), kept verbatim but for
-// its namespace and `inline`: tests/ode/write_contacts_test.cpp holds the current one
+// its namespace and `inline`: tests/ode/adapter_equality_test.cpp holds the current one
 // (src/ode/write_contacts.hpp) against it, byte for byte.
 #pragma once
 
