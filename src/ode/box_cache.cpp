@@ -1,6 +1,7 @@
 #include "box_cache.hpp"
 
 #include <array>
+#include <cstring>
 #include <functional>
 #include <mutex>
 #include <shared_mutex>
@@ -55,12 +56,14 @@ std::shared_ptr<const Polytope> boxPolytope(double halfX, double halfY, double h
     return cache.boxes.emplace(key, std::move(built)).first->second;
 }
 
-const Polytope& borrowedBoxPolytopeSlow(ThreadCache& cache, double halfX, double halfY, double halfZ) {
+const Polytope& borrowedBoxPolytopeSlow(ThreadCache& cache, const double* lengths) {
+    const double halfX = 0.5 * lengths[0], halfY = 0.5 * lengths[1], halfZ = 0.5 * lengths[2];
     const std::uint64_t now = ++cache.boxClock;
     ThreadCache::BoxSlot* oldest = &cache.boxes[0];
     for (ThreadCache::BoxSlot& slot : cache.boxes) {
         if (slot.halfExtents[0] == halfX && slot.halfExtents[1] == halfY && slot.halfExtents[2] == halfZ) {
             slot.lastUse = now;
+            std::memcpy(slot.lengths, lengths, sizeof slot.lengths);
             cache.lastBox = static_cast<int>(&slot - cache.boxes);
             return *slot.polytope;
         }
@@ -74,6 +77,7 @@ const Polytope& borrowedBoxPolytopeSlow(ThreadCache& cache, double halfX, double
     oldest->halfExtents[0] = halfX;
     oldest->halfExtents[1] = halfY;
     oldest->halfExtents[2] = halfZ;
+    std::memcpy(oldest->lengths, lengths, sizeof oldest->lengths);
     oldest->lastUse = now;
     cache.lastBox = static_cast<int>(oldest - cache.boxes);
     return *oldest->polytope;

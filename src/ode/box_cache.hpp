@@ -6,6 +6,7 @@
 
 #include "thread_cache.hpp"
 
+#include <cstring>
 #include <memory>
 
 namespace gdc::ode::detail {
@@ -16,14 +17,18 @@ std::shared_ptr<const Polytope> boxPolytope(double halfX, double halfY, double h
 /// As boxPolytope, for collide(): borrowed from the thread's cache. The reference stays valid
 /// until this thread has looked up kBorrowedBoxSizes − 1 other sizes, which covers both boxes
 /// of one pair — or, while ThreadCache::pinnedBoxes is set, until that vector is cleared.
-const Polytope& borrowedBoxPolytopeSlow(ThreadCache& cache, double halfX, double halfY, double halfZ);
-inline const Polytope& borrowedBoxPolytope(ThreadCache& cache, double halfX, double halfY, double halfZ) {
+/// `lengths`: the box's as dGeomBoxGetLengths gives them; the half extents are half of each. The
+/// last slot is compared by the bytes of the lengths it was found for (integer compares); the
+/// search of the others by the half extents' values, as before: a box whose lengths equal the
+/// last's by value but not by bytes finds the slot it found before.
+const Polytope& borrowedBoxPolytopeSlow(ThreadCache& cache, const double* lengths);
+inline const Polytope& borrowedBoxPolytope(ThreadCache& cache, const double* lengths) {
     ThreadCache::BoxSlot& last = cache.boxes[cache.lastBox];
-    if (last.halfExtents[0] == halfX && last.halfExtents[1] == halfY && last.halfExtents[2] == halfZ) {
+    if (std::memcmp(last.lengths, lengths, sizeof last.lengths) == 0) {
         last.lastUse = ++cache.boxClock;
         return *last.polytope;
     }
-    return borrowedBoxPolytopeSlow(cache, halfX, halfY, halfZ);
+    return borrowedBoxPolytopeSlow(cache, lengths);
 }
 
 }  // namespace gdc::ode::detail

@@ -8,6 +8,7 @@
 #include "installed_settings.hpp"
 #include "ode_internals.hpp"
 #include "thread_cache.hpp"
+#include "write_contacts.hpp"
 #include "contact/box_box.hpp"
 #include "contact/collide_general.hpp"
 #include "contact/half_space.hpp"
@@ -20,6 +21,7 @@
 #include <cstring>
 #include <exception>
 #include <functional>
+#include <optional>
 #include <string>
 
 namespace gdc::ode {
@@ -215,7 +217,7 @@ bool matchesXExtent(const Polytope& hull, const Pose& pose, dGeomID geom, int br
     if (geomClass == dBoxClass) {
         dVector3 lengths;
         dGeomBoxGetLengths(geom, lengths);
-        return &detail::borrowedBoxPolytope(cache, 0.5 * lengths[0], 0.5 * lengths[1], 0.5 * lengths[2]);
+        return &detail::borrowedBoxPolytope(cache, lengths);
     }
     if (geomClass != dConvexClass) unsupportedClass(geomClass);
     return knownHull(geom, pose, settings, cache, unregistered);
@@ -224,7 +226,7 @@ bool matchesXExtent(const Polytope& hull, const Pose& pose, dGeomID geom, int br
 const detail::ThreadCache::PlaneSlot& planeOf(dGeomID plane, detail::ThreadCache& cache) {
     dVector4 parameters;  // a·x + b·y + c·z ≤ d is the solid; (a,b,c) points out of it
     dGeomPlaneGetParams(plane, parameters);
-    return detail::planeSlot(cache, parameters[0], parameters[1], parameters[2], parameters[3]);
+    return detail::planeSlot(cache, parameters);
 }
 
 // One fixed order per pair, so collide(a,b) and collide(b,a) make the same core call and their
@@ -238,9 +240,6 @@ bool comesFirst(const Vec3& p, dGeomID geomP, const Vec3& q, dGeomID geomQ) {
     if (p.z() != q.z()) return p.z() < q.z();
     return std::less<const void*>{}(static_cast<const void*>(geomP), static_cast<const void*>(geomQ));
 }
-
-// Vec3::allFinite without the reduction machinery: x − x is 0 exactly for a finite x, NaN else.
-bool isFinite(const Vec3& v) { return (v.x() - v.x()) + (v.y() - v.y()) + (v.z() - v.z()) == 0.0; }
 
 // Where a pair's cache comes from: handed over (spaceCollide found it while ODE's broad phase listed
 // the pair), found through this call's own lease on the table, or none (the table is busy or off).
@@ -275,98 +274,6 @@ const Manifold& queryThrough(const CacheSource& source, dGeomID o1, dGeomID o2, 
     return manifold;
 }
 
-// The core's contacts as ODE's: at most maxContacts, written in place at stride `skip`, in the
-// order that makes dWorldQuickStep meet them as `order` says. `flip`: the core's A is o2 (its
-// normal then already points from o2 into o1).
-// `checkedFinite`: the core's own answer (not one a pair cache carried), whose every position the
-// core has checked finite (every answer it computes is written by emitManifold or the plane
-// contacts, which throw where a contact overflows), so the test below would pass.
-int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int maxContacts, ContactOrder order,
-                  dGeomID o1, dGeomID o2, dContactGeom* contact, int skip, bool checkedFinite) {
-    // The core's normal points from A towards B; ODE's from o2 into o1.
-    Vec3 normal = flip ? manifold.normal : Vec3(-manifold.normal);
-    // norm() is the square root of squaredNorm(): where that is exactly 1 (the common case) the
-    // root is 1 and the division changes no bit, so both are skipped.
-    const double squaredLength = normal.squaredNorm();
-    if (squaredLength != 1.0) {
-        const double length = std::sqrt(squaredLength);
-        if (!std::isfinite(length) || std::abs(length - 1.0) > 1e-6) {
-            dMessage(d_ERR_UNKNOWN, "gdcontact: the core returned an invalid normal; pair skipped");
-            return 0;
-        }
-        normal /= length;
-    }
-
-    // ODE treats every contact as active and clamps a negative depth to zero, so a speculative
-    // point (depth < 0, only with Settings::margin > 0) would hold the bodies apart by its gap.
-    // Such points are not passed on; a rounding-level negative depth is reported as touching.
-    const double touchingTolerance = 1e-9 * sizeOfPair;
-    // The core's points come in the order of importance (the deepest first; every prefix the best
-    // of its length), already reduced to maxContacts: the set is the best of its size. The ORDER
-    // is by depth, for dWorldQuickStep, which solves rows in the order they arrive: ODE's
-    // dJointAttach puts each new contact joint at the head of its bodies' joint lists and the
-    // island walk follows those lists, so the solver meets a pair's joints in the reverse of the
-    // array's order. DeepestLast writes the array deepest first (the solver meets the shallowest
-    // first), DeepestFirst the reverse. Ordered by depth, the order follows the tilt of a resting
-    // face and corrects it; a fixed order (the importance order) pushed 20-box stacks over in
-    // every seed (docs/algorithm.md). Equal depths keep the importance order. Kept points are
-    // inserted by depth as they are read; at most 16, so an insertion sort of (depth, index)
-    // pairs is the cheapest. Slot 0 holds NaN, which no comparison passes, so the inner loop needs
-    // no bound check (a kept depth is never NaN).
-    struct Ranked {
-        double depth;
-        int index;
-    };
-    std::array<Ranked, kMaxManifoldPoints + 1> ranked;  // deepest first from ranked[1]
-    ranked[0] = Ranked{NAN, -1};
-    int kept = 0;
-    for (int i = 0; i < manifold.pointCount; ++i) {
-        const ContactPoint& point = manifold.points[i];
-        const double depth = point.depth;
-        if (!(depth >= -touchingTolerance && (checkedFinite || isFinite(point.position)))) continue;
-        Ranked* slot = &ranked[++kept];  // a pointer walk: indices made g++ unroll into index arithmetic
-        for (; depth > slot[-1].depth; --slot) *slot = slot[-1];
-        *slot = Ranked{depth, i};
-    }
-    // Touching points (depth ≤ 0, written as 0) are left out where the pair has overlapping ones,
-    // as the body-pair budget does within a cluster (body_pair_reduction.cpp): such a row has a
-    // right-hand side of exactly 0 and, between bodies resting together, a relative velocity of
-    // exactly 0 — a tie ODE's Dantzig pivoting cannot break ("LCP internal error, s <= 0"; the
-    // pyramid under dWorldStep printed it in 2 of 50 seeds). The overlapping points carry the
-    // support; the touching one adds no force ODE would not get a step later, when it overlaps.
-    // Measured over seeds (docs/algorithm.md, "Sleeping, over seeds"): no change in failures or
-    // drift. The ranking is deepest first, so the touching points are its tail.
-    if (kept > 0 && ranked[1].depth > 0)
-        while (!(ranked[kept].depth > 0)) --kept;
-    const int written = std::min(kept, maxContacts);
-    // Walk the ranked entries forwards (DeepestLast) or backwards (DeepestFirst): one step, no
-    // index arithmetic per contact.
-    const bool reverse = order == ContactOrder::DeepestFirst;
-    const Ranked* entry = reverse ? &ranked[written] : &ranked[1];
-    const std::ptrdiff_t step = reverse ? -1 : 1;
-    const double nx = normal.x(), ny = normal.y(), nz = normal.z();
-    const ContactPoint* points = manifold.points.data();
-    char* outBytes = reinterpret_cast<char*>(contact);
-    for (int k = 0; k < written; ++k, outBytes += skip, entry += step) {
-        const Vec3& position = points[entry->index].position;
-        dContactGeom* out = reinterpret_cast<dContactGeom*>(outBytes);
-        out->pos[0] = position.x();
-        out->pos[1] = position.y();
-        out->pos[2] = position.z();
-        out->pos[3] = 0;
-        out->normal[0] = nx;
-        out->normal[1] = ny;
-        out->normal[2] = nz;
-        out->normal[3] = 0;
-        out->depth = std::max(entry->depth, 0.0);
-        out->g1 = o1;
-        out->g2 = o2;
-        out->side1 = -1;
-        out->side2 = -1;
-    }
-    return written;
-}
-
 // AngularTolerance(radians), the thread's copy while `radians` is the same to the bit.
 const gdc::detail::AngularTolerance& angularToleranceOf(detail::ThreadCache& cache, double radians) {
     std::uint64_t bits;
@@ -388,20 +295,20 @@ const gdc::detail::AngularTolerance& angularToleranceOf(detail::ThreadCache& cac
 // equal depths: the core's importance order is asked for only among equal depths
 // (ImportanceOrder::AmongEqualDepths, half_space.hpp), so a face whose corners all have different
 // depths (every tilted resting face) is not ranked — the same contacts, in the same order.
-void queryInto(const Polytope& a, const Pose& poseA, const detail::ThreadCache::PlaneSlot& plane, const HalfSpace& b,
+void queryInto(const Polytope& a, const Pose& poseA, const detail::ThreadCache::PlaneSlot& plane,
                const Settings& settings, detail::ThreadCache& cache, Manifold& out) {
     if (gdc::detail::halfSpaceFastPathApplies(a, settings)) {
         if (plane.normalised) {
-            const gdc::detail::UnitHalfSpace unit{plane.normalisedNormal, plane.normalisedOffset};
+            const gdc::detail::UnitHalfSpace& unit = plane.normalisedHalfSpace;
             constexpr gdc::detail::ImportanceOrder order = gdc::detail::ImportanceOrder::AmongEqualDepths;
             // A box's feature takes no AngularTolerance (its lazy bounds): the lookup only for hulls.
             if (a.isBox()) return gdc::detail::collideHalfSpaceInto<order>(a, poseA, unit, settings, out);
             return gdc::detail::collideHalfSpaceInto<order>(a, poseA, unit, settings,
                                                             angularToleranceOf(cache, settings.angularTolerance), out);
         }
-        return gdc::detail::collideHalfSpaceInto(a, poseA, b, settings, out);
+        return gdc::detail::collideHalfSpaceInto(a, poseA, plane.halfSpace, settings, out);
     }
-    out.assignUsed(gdc::collide(a, poseA, b, settings));
+    out.assignUsed(gdc::collide(a, poseA, plane.halfSpace, settings));
 }
 
 // The pair's answer too goes to writeContacts alone, with the caller's limit as the core's budget
@@ -473,18 +380,17 @@ decltype(auto) collideLimited(const Settings& settings, int maxContacts, Collide
     const Polytope& polytope = *pair.polytope1;
     const Pose& pose = pair.pose1();
     const detail::ThreadCache::PlaneSlot& plane = *pair.plane;
-    const HalfSpace halfSpace{plane.unit, plane.raw[3]};
     const Manifold& manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) -> const Manifold& {
         return queryThrough(
             pairCache, o1, o2, cache.scratch, cache.carried,
-            [&](Manifold& out) { queryInto(polytope, pose, plane, halfSpace, pairSettings, cache, out); },
+            [&](Manifold& out) { queryInto(polytope, pose, plane, pairSettings, cache, out); },
             [&](PairCache& entry, Manifold& carried) -> const Manifold& {
-                return gdc::collideInto(polytope, pose, halfSpace, pairSettings, entry, carried);
+                return gdc::collideInto(polytope, pose, plane.halfSpace, pairSettings, entry, carried);
             });
     });
     if (manifold.empty()) return 0;
     // The core's own answer is checked finite; a carried one (in cache.carried) is not.
-    return writeContacts(manifold, planeFirst, polytope.radius(), maxContacts, settings.contactOrder, o1, o2, contact,
+    return detail::writeContacts(manifold, planeFirst, polytope.radius(), maxContacts, settings.contactOrder, o1, o2, contact,
                          skip, &manifold != &cache.carried);
 }
 
@@ -510,7 +416,7 @@ decltype(auto) collideLimited(const Settings& settings, int maxContacts, Collide
     });
     if (manifold.empty()) return 0;
     // The core's own answer (box–box or general) is checked finite, as the half-space one.
-    return writeContacts(manifold, swapped, polytope1.radius() + polytope2.radius(), maxContacts,
+    return detail::writeContacts(manifold, swapped, polytope1.radius() + polytope2.radius(), maxContacts,
                          settings.contactOrder, o1, o2, contact, skip, &manifold != &cache.carried);
 }
 
@@ -530,8 +436,13 @@ int maxContactsOf(int flags, const Settings& settings) {
     return std::min({flags & 0xffff, settings.maxContacts, kMaxManifoldPoints});
 }
 
-int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip,
-                   const Settings& settings, detail::ThreadCache& cache, const CacheSource& pairCache) {
+// Inline, as the guard around it and its one caller's lambda (collideGuarded): one frame for the
+// whole call. Apart, the call between them and its eight arguments (two on the stack) were
+// ~25 instructions of every call; GCC left the lambda a function of its own once this was inlined
+// into it, hence the attributes there too (callgrind, box_box/separated: 906 -> 878).
+[[gnu::always_inline]] inline int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip,
+                                                 const Settings& settings, detail::ThreadCache& cache,
+                                                 const CacheSource& pairCache) {
     const int maxContacts = maxContactsOf(flags, settings);
     if (maxContacts <= 0 || o1 == o2) return 0;
     if (!o1 || !o2) misuse("gdc::ode::collide got a null geom");
@@ -548,7 +459,7 @@ int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int
 
 // What no exception may cross: ODE is C. A failure becomes a dMessage and no contacts.
 template <class Body>
-int guarded(Body body) noexcept {
+[[gnu::always_inline]] inline int guarded(Body body) noexcept {
     try {
         return body();
     } catch (const InvalidInput& error) {  // its message already starts with "gdcontact: "
@@ -574,13 +485,15 @@ int collideGuarded(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int
         } catch (...) {  // a lock failure; the defaults are always valid
         }
     }
-    return guarded([&] {
-        if (given) return collideChecked(o1, o2, flags, contact, skip, *settings, cache, CacheSource{given, nullptr});
+    return guarded([&]() __attribute__((always_inline)) {
+        // One call of collideChecked (inlined here, see there), with the table's lease when one is
+        // taken: an optional, alive until the call is over.
+        std::optional<detail::PairCacheTable::Lease> lease;
+        CacheSource source{given, nullptr};
         // The table's switch first: with the cache off, not even the ODE getters of the rule.
-        if (!detail::pairCacheTable().enabled() || !detail::pairCacheWorthIt(o1, o2, *settings))
-            return collideChecked(o1, o2, flags, contact, skip, *settings, cache, CacheSource{});
-        detail::PairCacheTable::Lease lease(detail::pairCacheTable());
-        return collideChecked(o1, o2, flags, contact, skip, *settings, cache, CacheSource{nullptr, &lease});
+        if (!given && detail::pairCacheTable().enabled() && detail::pairCacheWorthIt(o1, o2, *settings))
+            source.lease = &lease.emplace(detail::pairCacheTable());
+        return collideChecked(o1, o2, flags, contact, skip, *settings, cache, source);
     });
 }
 

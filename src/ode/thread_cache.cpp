@@ -18,12 +18,10 @@ const ThreadCache::PlaneSlot& planeSlotSlow(ThreadCache& cache, double a, double
     slot.raw[1] = b;
     slot.raw[2] = c;
     slot.raw[3] = d;
-    slot.unit = Vec3(a, b, c).normalized();
+    slot.halfSpace = HalfSpace{Vec3(a, b, c).normalized(), d};
     slot.normalised = false;
     try {
-        const gdc::detail::UnitHalfSpace normalised = gdc::detail::normaliseHalfSpace(HalfSpace{slot.unit, d});
-        slot.normalisedNormal = normalised.normal;
-        slot.normalisedOffset = normalised.offset;
+        slot.normalisedHalfSpace = gdc::detail::normaliseHalfSpace(slot.halfSpace);
         slot.normalised = true;
     } catch (const InvalidInput&) {  // a bad plane: each call's core query reports it
     }

@@ -5,14 +5,17 @@
 // has no shared side.
 #pragma once
 
+#include <gdcontact/collide.hpp>
 #include <gdcontact/manifold.hpp>
 #include <gdcontact/polytope.hpp>
 #include <gdcontact/settings.hpp>
 
 #include "contact/gauss_map.hpp"
+#include "contact/half_space.hpp"
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <vector>
 
@@ -30,6 +33,10 @@ struct ThreadCache {
 
     struct BoxSlot {
         double halfExtents[3] = {NAN, NAN, NAN};    // NaN: never equal, so an empty slot never hits
+        // The box lengths (twice the half extents) the slot was last found for, as ODE gave them:
+        // the last slot's are compared by their bytes, integer compares in place of the half
+        // extents' products and floating-point compares (borrowedBoxPolytope).
+        double lengths[3] = {NAN, NAN, NAN};
         std::shared_ptr<const Polytope> polytope;  // keeps the borrowed polytope alive
         std::uint64_t lastUse = 0;
     };
@@ -43,13 +50,14 @@ struct ThreadCache {
 
     struct PlaneSlot {
         double raw[4] = {NAN, NAN, NAN, NAN};  // a, b, c, d; NaN: never equal, so an empty slot never hits
-        Vec3 unit = Vec3::Zero();              // (a, b, c) normalised: the HalfSpace the core is given
+        // (a, b, c) normalised and d: the HalfSpace the core is given. As the core takes them, so
+        // that a query is handed these by reference (copies of them were ~12 instructions a call).
+        HalfSpace halfSpace{Vec3::Zero(), 0.0};
         // The core's own normalisation of that half-space (normaliseHalfSpace, half_space.hpp),
         // made once per plane instead of per call; false where it refuses the plane (then every
         // call takes the core's full path, which says why).
         bool normalised = false;
-        Vec3 normalisedNormal = Vec3::Zero();
-        double normalisedOffset = 0;
+        gdc::detail::UnitHalfSpace normalisedHalfSpace{Vec3::Zero(), 0.0};
     };
     static constexpr int kPlaneSlots = 4;
     PlaneSlot planes[kPlaneSlots];
@@ -144,10 +152,14 @@ inline ThreadCache& threadCache() {
 /// divisions in a chain were a fifth of a cheap box–plane call's time. Valid until this thread
 /// looks up kPlaneSlots other planes.
 const ThreadCache::PlaneSlot& planeSlotSlow(ThreadCache& cache, double a, double b, double c, double d);
-inline const ThreadCache::PlaneSlot& planeSlot(ThreadCache& cache, double a, double b, double c, double d) {
+/// `parameters`: a, b, c, d as dGeomPlaneGetParams gives them. The last slot is compared by its
+/// bytes (integer compares, which need no floating-point registers kept across ODE's calls); the
+/// search of the others by value, so that a plane equal by value but not by bytes (±0) finds the
+/// slot it found before.
+inline const ThreadCache::PlaneSlot& planeSlot(ThreadCache& cache, const double* parameters) {
     const ThreadCache::PlaneSlot& last = cache.planes[cache.lastPlane];
-    if (last.raw[0] == a && last.raw[1] == b && last.raw[2] == c && last.raw[3] == d) return last;
-    return planeSlotSlow(cache, a, b, c, d);
+    if (std::memcmp(last.raw, parameters, sizeof last.raw) == 0) return last;
+    return planeSlotSlow(cache, parameters[0], parameters[1], parameters[2], parameters[3]);
 }
 
 }  // namespace gdc::ode::detail

@@ -12,13 +12,18 @@
 // The largest difference found is printed (and required to be 0).
 #include <gdcontact/ode.hpp>
 
+#include "ode/write_contacts.hpp"  // src/: the adapter's write of a manifold
 #include "ode_support.hpp"
+#include "write_contacts_reference.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
+#include <cstring>
+#include <limits>
 #include <functional>
 #include <memory>
 #include <random>
@@ -333,4 +338,158 @@ TEST_CASE("adapter: a hull on a plane follows each install()'s angular tolerance
     CHECK(result.largest == 0.0);
     for (dGeomID g : {hull, ground}) dGeomDestroy(g);
     gdc::ode::setPairCacheEnabled(true);
+}
+
+namespace {
+
+// ---- writeContacts against its former version (tests/ode/write_contacts_reference.hpp) ----
+//
+// The write of a manifold as dContactGeoms (src/ode/write_contacts.hpp) was made cheaper (pointers
+// instead of indices, the finiteness test chosen once per manifold, the fields stored in pairs);
+// here both versions write every manifold of 10^5 random poses of each pair type into arrays
+// filled alike with random bytes, and must leave the arrays identical byte for byte and return the
+// same count. Each call's other inputs are drawn too: either order of the pair, the contact limit,
+// the stride (dContactGeom or dContact), DeepestLast or DeepestFirst, a core answer or a carried
+// one (then some positions not finite); the points shuffled in half the calls (the adapter's
+// queries return lift order where depths differ), and some depths made equal, negative, −0 or 0.
+
+struct WriteComparison {
+    long long calls = 0, contacts = 0, mismatches = 0, invalidNormals = 0;
+    double largest = 0;  // over the doubles of the written contacts
+};
+
+void ignoreMessage(int, const char*, va_list) {}
+
+void compareWrites(Manifold manifold, double sizeOfPair, std::mt19937_64& random, WriteComparison& result) {
+    std::uniform_int_distribution<int> limitOf(1, kMaxManifoldPoints), coin(0, 1), kindOf(0, 9);
+    const bool flip = coin(random) == 1;
+    const int maxContacts = limitOf(random);
+    const ContactOrder order = coin(random) ? ContactOrder::DeepestFirst : ContactOrder::DeepestLast;
+    const int skip = coin(random) ? static_cast<int>(sizeof(dContact)) : static_cast<int>(sizeof(dContactGeom));
+    const bool checkedFinite = kindOf(random) < 7;
+    if (coin(random)) std::shuffle(manifold.points.begin(), manifold.points.begin() + manifold.pointCount, random);
+    std::uniform_int_distribution<int> pointOf(0, std::max(manifold.pointCount - 1, 0));
+    for (int i = 0; i < manifold.pointCount; ++i) {
+        ContactPoint& point = manifold.points[static_cast<std::size_t>(i)];
+        switch (kindOf(random)) {
+            case 0: point.depth = manifold.points[static_cast<std::size_t>(pointOf(random))].depth; break;  // a tie
+            case 1: point.depth = -2e-9 * sizeOfPair; break;    // below touching: dropped
+            case 2: point.depth = -0.5e-9 * sizeOfPair; break;  // touching
+            case 3: point.depth = kindOf(random) < 5 ? 0.0 : -0.0; break;
+            case 4:
+                if (!checkedFinite)  // only a carried answer has them
+                    point.position[coin(random) ? 0 : 2] =
+                        coin(random) ? std::numeric_limits<double>::quiet_NaN() : std::numeric_limits<double>::infinity();
+                break;
+            default: break;
+        }
+    }
+    switch (kindOf(random)) {  // the normal: a unit axis (squared length exactly 1), or off unit
+        case 0: manifold.normal = Vec3::UnitZ() * (coin(random) ? 1.0 : -1.0); break;
+        case 1: manifold.normal *= 1 + 1e-7; break;   // normalised again
+        case 2: manifold.normal *= 1 + 1e-5; ++result.invalidNormals; break;  // refused: no contacts
+        default: break;
+    }
+    const dGeomID o1 = reinterpret_cast<dGeomID>(std::uintptr_t{0x1000} + static_cast<std::uintptr_t>(kindOf(random)) * 16);
+    const dGeomID o2 = reinterpret_cast<dGeomID>(std::uintptr_t{0x2000});
+    std::vector<unsigned char> before(kMaxManifoldPoints * sizeof(dContact));
+    for (unsigned char& byte : before) byte = static_cast<unsigned char>(random());
+    std::vector<unsigned char> got = before, want = before;
+    const int gotCount = gdc::ode::detail::writeContacts(manifold, flip, sizeOfPair, maxContacts, order, o1, o2,
+                                                         reinterpret_cast<dContactGeom*>(got.data()), skip, checkedFinite);
+    const int wantCount = gdc::ode::reference::writeContacts(manifold, flip, sizeOfPair, maxContacts, order, o1, o2,
+                                                             reinterpret_cast<dContactGeom*>(want.data()), skip,
+                                                             checkedFinite);
+    ++result.calls;
+    result.contacts += wantCount;
+    if (gotCount != wantCount || got != want) ++result.mismatches;
+    for (int i = 0; i < std::min(gotCount, wantCount); ++i) {
+        dContactGeom a, b;
+        std::memcpy(&a, got.data() + static_cast<std::ptrdiff_t>(i) * skip, sizeof a);
+        std::memcpy(&b, want.data() + static_cast<std::ptrdiff_t>(i) * skip, sizeof b);
+        double difference = std::abs(a.depth - b.depth);
+        for (int k = 0; k < 4; ++k)
+            difference = std::max({difference, std::abs(a.pos[k] - b.pos[k]), std::abs(a.normal[k] - b.normal[k])});
+        if (!(difference <= result.largest)) result.largest = difference;  // a NaN difference stays visible
+    }
+}
+
+}  // namespace
+
+TEST_CASE("adapter: writeContacts equals its former version byte for byte on 1e5 manifolds of every pair type",
+          "[ode][equality]") {
+    OdeSession session(false);
+    dMessageFunction* previous = dGetMessageHandler();
+    dSetMessageHandler(&ignoreMessage);  // the refused normals' message
+    std::mt19937_64 random(17);
+    std::uniform_real_distribution<double> unit(-0.5, 0.5);
+    const Polytope box1 = Polytope::box(Vec3(0.5, 0.4, 0.3)), box2 = Polytope::box(Vec3(0.35, 0.7, 0.15));
+    std::vector<Vec3> cloud;
+    for (int i = 0; i < 20; ++i) cloud.emplace_back(unit(random), unit(random), unit(random));
+    const Polytope cloudHull = Polytope::fromPoints(cloud);
+    std::vector<Vec3> corners;
+    for (int i = 0; i < 8; ++i) corners.emplace_back(i & 1 ? 0.45 : -0.45, i & 2 ? 0.35 : -0.35, i & 4 ? 0.3 : -0.3);
+    const Polytope boxHull = Polytope::fromPoints(corners);
+    const HalfSpace ground{Vec3::UnitZ(), 0.0}, tilted{Vec3(0.1, -0.2, 1.0).normalized(), 0.05};
+    const auto randomPose = [&](double spread) {
+        return Pose{randomRotation(random), Vec3(spread * unit(random), spread * unit(random), spread * unit(random))};
+    };
+    // Resting poses (flat: equal depths to the bit; tilted about an axis: pairs of them) and others.
+    const auto restingPose = [&](int i, double height) {
+        const Vec3 position(0.4 * unit(random), 0.4 * unit(random), height + 0.01 * unit(random));
+        switch (i % 4) {
+            case 0: return Pose{Mat3::Identity(), position};
+            case 1: return Pose{rotationAbout(Vec3::UnitX(), 0.004 * unit(random)), position};
+            case 2: return Pose{rotationAbout(Vec3::UnitZ(), 2 * unit(random)), position};
+            default: return randomPose(1.2);
+        }
+    };
+    struct PairType {
+        const char* name;
+        std::function<std::pair<Manifold, double>(int)> manifoldOf;  // a manifold and the pair's size
+    };
+    const std::vector<PairType> types = {
+        {"box-box",
+         [&](int i) {
+             return std::make_pair(gdc::collide(box1, Pose{Mat3::Identity(), Vec3::Zero()}, box2, restingPose(i, 0.449)),
+                                   box1.radius() + box2.radius());
+         }},
+        {"box-plane",
+         [&](int i) {
+             return std::make_pair(gdc::collide(box1, restingPose(i, 0.29), i % 8 < 4 ? ground : tilted), box1.radius());
+         }},
+        {"convex-plane",
+         [&](int i) {
+             const Polytope& hull = i % 2 ? boxHull : cloudHull;
+             return std::make_pair(gdc::collide(hull, restingPose(i / 2, 0.29), ground), hull.radius());
+         }},
+        {"hull-hull",
+         [&](int) {
+             return std::make_pair(gdc::collide(boxHull, randomPose(1.0), cloudHull, randomPose(1.0)),
+                                   boxHull.radius() + cloudHull.radius());
+         }},
+        {"box-convex",
+         [&](int i) {
+             return std::make_pair(gdc::collide(box2, Pose{Mat3::Identity(), Vec3::Zero()}, boxHull, restingPose(i, 0.449)),
+                                   box2.radius() + boxHull.radius());
+         }},
+    };
+    for (const PairType& type : types) {
+        WriteComparison result;
+        int poses = 0;
+        for (; result.calls < kPosesPerType && poses < 4 * kPosesPerType; ++poses) {
+            const std::pair<Manifold, double> answer = type.manifoldOf(poses);
+            if (answer.first.empty()) continue;  // the adapter writes nothing then
+            compareWrites(answer.first, answer.second, random, result);
+        }
+        std::printf("writeContacts = reference, %s: %lld manifolds, %.2f contacts per call, %lld refused normals, "
+                    "%lld mismatches, largest difference %g\n",
+                    type.name, result.calls, static_cast<double>(result.contacts) / static_cast<double>(result.calls),
+                    result.invalidNormals, result.mismatches, result.largest);
+        CHECK(result.calls == kPosesPerType);
+        CHECK(result.contacts > result.calls / 2);  // the comparison has contacts to compare
+        CHECK(result.mismatches == 0);
+        CHECK(result.largest == 0.0);
+    }
+    dSetMessageHandler(previous);
 }

@@ -2,6 +2,7 @@
 // per-thread caches and the hull registry (src/ode/thread_cache.hpp, box_cache, installed_settings,
 // convex_registry). These tests pin down that a cache never answers with
 // something stale: settings installed later, more box sizes than a thread keeps, resized boxes,
+// planes given new parameters and more planes than a thread keeps,
 // convex geoms destroyed and re-created at the same address, and concurrent churn.
 #include <gdcontact/ode.hpp>
 
@@ -180,6 +181,48 @@ TEST_CASE("boxes of more sizes than a thread keeps, and resized boxes, collide w
     dGeomBoxSetLengths(boxes[3], 1.0, 1.0, 0.9);
     check(3, 4);
     for (dGeomID box : boxes) dGeomDestroy(box);
+}
+
+TEST_CASE("planes given new parameters, and more planes than a thread keeps, collide with their current parameters",
+          "[ode][cache]") {
+    OdeSession session;
+    // A box hanging 0.3 above the origin, axis-aligned (lengths 1, 0.8, 0.6), against planes whose
+    // parameters change between calls: the deepest contact is the deepest corner's distance into
+    // the plane's solid, as the current parameters say.
+    dGeomID box = dCreateBox(0, 1.0, 0.8, 0.6);
+    dGeomSetPosition(box, 0, 0, 0.3);
+    const auto expectedDepth = [](double a, double b, double c, double d) {
+        const Vec3 normal = Vec3(a, b, c).normalized();
+        double deepestCorner = -1e300;
+        for (int i = 0; i < 8; ++i) {
+            const Vec3 corner(i & 1 ? 0.5 : -0.5, i & 2 ? 0.4 : -0.4, i & 4 ? 0.6 : 0.0);
+            deepestCorner = std::max(deepestCorner, d / Vec3(a, b, c).norm() - normal.dot(corner));
+        }
+        return deepestCorner;
+    };
+    dGeomID plane = dCreatePlane(0, 0, 0, 1, 0.01);
+    const auto check = [&](double a, double b, double c, double d) {
+        dGeomPlaneSetParams(plane, a, b, c, d);
+        for (const bool planeFirst : {false, true}) {
+            const auto contacts = planeFirst ? collideDirectly(plane, box) : collideDirectly(box, plane);
+            REQUIRE_FALSE(contacts.empty());
+            CHECK(deepest(contacts) == Approx(expectedDepth(a, b, c, d)).margin(1e-9));
+            // ODE's normal points from o2 into o1; the plane's own normal points out of its solid.
+            const Vec3 normal = Vec3(a, b, c).normalized() * (planeFirst ? -1.0 : 1.0);
+            CHECK((toVec(contacts[0].normal) - normal).norm() < 1e-12);
+        }
+    };
+    check(0, 0, 1, 0.01);
+    check(0, 0, 1, 0.02);   // only d changed
+    check(0, 0, 2, 0.04);   // the same plane, scaled
+    check(0.1, 0, 1, 0.01);  // only a changed
+    check(0, 0.1, 1, 0.01);  // only b changed
+    // More planes than the thread keeps (ThreadCache::kPlaneSlots), cycled: each call finds its
+    // plane evicted or kept, and the first ones again after the others.
+    for (int round = 0; round < 3; ++round)
+        for (int i = 0; i < 7; ++i) check(0.02 * i, -0.01 * i, 1, 0.005 * (i + 1));
+    dGeomDestroy(plane);
+    dGeomDestroy(box);
 }
 
 TEST_CASE("a createConvex geom re-created at a destroyed one's address collides with its own hull",
