@@ -1,8 +1,9 @@
 // feature_intersection.cpp's stage 3 for small features (intersectSmallFeatures: the clip in fixed
-// arrays, the uniqueness pass, the heights, the lift) as it was before its projection was done two
-// coordinates at a time, the clip's steps branched on the first point's side and the heights and
-// the lift fused into one pass (the box speed work after ac53fc8), kept verbatim as the reference
-// that tests/small_intersection_test.cpp compares detail::intersectSmallFeatures and
+// arrays, the uniqueness pass, the heights, the lift) as it was at ac53fc8, before the box speed
+// work: its projection one dot product at a time, the clip's steps testing both crossings, the
+// uniqueness pass a loop of its own after the clip (now made by the clip's last edge as it writes),
+// the heights in arrays read by a second loop. Kept verbatim as the reference that
+// tests/small_intersection_test.cpp compares detail::intersectSmallFeatures and
 // detail::intersectFeatures with, bit for bit.
 #pragma once
 

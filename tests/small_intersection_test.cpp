@@ -75,8 +75,8 @@ TEST_CASE("box-box small intersection: the fixed arrays' manifold equals the gen
 }
 
 // Stage 3 against its former form (small_intersection_reference.hpp: the clip, the uniqueness
-// pass, the heights and the lift before the projection took both coordinates at once, the clip's
-// steps branched on the first point's side and the heights were fused into the lift): every lifted
+// pass, the heights and the lift as they were at ac53fc8, before the speed work on the box pair):
+// every lifted
 // point the same double, field by field, in the same order, for both storages (the fixed arrays of
 // intersectSmallFeatures and the growable vectors of intersectFeatures). The features and normals
 // are the box pair's own — the growth-distance normal and each face normal of a selected face

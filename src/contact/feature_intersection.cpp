@@ -80,13 +80,20 @@ template <class Polygon>
 // of each CCW edge of `clip`, in the caller's two buffers in turn (the subject itself is read by
 // the first edge, no copy). Returns the region: one of the buffers, or the subject where no edge
 // of `clip` cut it.
-template <class Polygon>
+// With kDropRepeats, the last edge of `clip` writes a point only where it is more than `tolerance`
+// from the point written before it — intersectPieces' pass over the region, made as the region is
+// written (the same points kept, one loop less) — and `repeatsDropped` says whether it did (the last
+// edge ran); the caller makes the pass itself otherwise.
+template <bool kDropRepeats = false, class Polygon>
 [[gnu::always_inline]] inline const Polygon& clipByConvexPolygon(const Polygon& subject, const Polygon& clip,
-                                                                 double tolerance, Polygon (&buffers)[2]) {
+                                                                 double tolerance, Polygon (&buffers)[2],
+                                                                 bool* repeatsDropped = nullptr) {
     const Polygon* input = &subject;
     const Vec2* corners = clip.data();
     const std::size_t sides = clip.size();
     int written = 0;  // buffers filled so far: the next one is never the one being read
+    const double toleranceSquared = tolerance * tolerance;
+    if constexpr (kDropRepeats) *repeatsDropped = false;
     for (std::size_t e = 0; e < sides && !input->empty(); ++e) {
         const Vec2* current = input->data();
         const std::size_t n = input->size();
@@ -96,8 +103,8 @@ template <class Polygon>
         if (!(length > 0)) continue;  // a repeated corner: no half-plane
         Polygon& next = buffers[written++ & 1];
         next.clear();
-        Vec2* output = next.reserve(2 * n);  // each point adds itself and at most one crossing
-        std::size_t count = 0;
+        Vec2* const output = next.reserve(2 * n);  // each point adds itself and at most one crossing
+        Vec2* end = output;  // past the last point written
         // Signed distance scaled by the edge length (> 0 inside); the slack is scaled to match.
         const double slack = tolerance * length;
         auto distance = [&](const Vec2& p) { return cross2(edge, p - a); };
@@ -108,22 +115,32 @@ template <class Polygon>
         // A point is kept or dropped, and an edge crosses from outside in or from inside out: one
         // test of p's side decides which crossing to look for (a NaN takes neither, as both
         // conditions written together did).
-        auto step = [&](const Vec2& p, const Vec2& q, double dq) {
-            if (dp >= -slack) {
-                output[count++] = p;
-                if (dp > slack && dq < -slack) output[count++] = p + (q - p) * (dp / (dp - dq));
-            } else if (dp < -slack && dq > slack) {
-                output[count++] = p + (q - p) * (dp / (dp - dq));
+        auto cut = [&](auto&& write) {
+            auto step = [&](const Vec2& p, const Vec2& q, double dq) {
+                if (dp >= -slack) {
+                    write(p);
+                    if (dp > slack && dq < -slack) write(p + (q - p) * (dp / (dp - dq)));
+                } else if (dp < -slack && dq > slack) {
+                    write(p + (q - p) * (dp / (dp - dq)));
+                }
+                dp = dq;
+            };
+            for (std::size_t i = 0; i + 1 < n; ++i) step(current[i], current[i + 1], distance(current[i + 1]));
+            if (n >= 3) {
+                step(current[n - 1], current[0], first);
+            } else if (dp >= -slack) {  // a segment's or a point's last point: no closing edge
+                write(current[n - 1]);
             }
-            dp = dq;
         };
-        for (std::size_t i = 0; i + 1 < n; ++i) step(current[i], current[i + 1], distance(current[i + 1]));
-        if (n >= 3) {
-            step(current[n - 1], current[0], first);
-        } else if (dp >= -slack) {  // a segment's or a point's last point: no closing edge
-            output[count++] = current[n - 1];
+        if (kDropRepeats && e + 1 == sides) {
+            cut([&](const Vec2& p) {
+                if (end == output || (p - end[-1]).squaredNorm() > toleranceSquared) *end++ = p;
+            });
+            if constexpr (kDropRepeats) *repeatsDropped = true;
+        } else {
+            cut([&](const Vec2& p) { *end++ = p; });
         }
-        next.setSize(count);
+        next.setSize(static_cast<std::size_t>(end - output));
         input = &next;
     }
     return *input;
@@ -159,13 +176,17 @@ bool pointOnSegment(const Vec2& p, const Vec2& a, const Vec2& b, double toleranc
 
 // The intersection of two projected features (the one with more points clips the other; B's
 // when as many), in the caller's buffers; returns the region.
+// `repeatsDropped`: whether the region's near-repeated consecutive points were dropped on the way
+// (clipByConvexPolygon's kDropRepeats).
 template <class Polygon>
 [[gnu::always_inline]] inline const Polygon& intersect2d(const Polygon& first, const Polygon& second,
-                                                         double tolerance, Polygon (&buffers)[2]) {
+                                                         double tolerance, Polygon (&buffers)[2],
+                                                         bool& repeatsDropped) {
     const bool firstHasMore = first.size() >= second.size();
     const Polygon& a = firstHasMore ? first : second;  // a has at least as many points
     const Polygon& b = firstHasMore ? second : first;
-    if (a.size() >= 3) return clipByConvexPolygon(b, a, tolerance, buffers);
+    if (a.size() >= 3) return clipByConvexPolygon<true>(b, a, tolerance, buffers, &repeatsDropped);
+    repeatsDropped = false;
     Polygon& out = buffers[0];
     if (a.size() == 2 && b.size() == 2) {
         intersectSegments(a[0], a[1], b[0], b[1], tolerance, out);
@@ -246,27 +267,34 @@ template <class Storage>
                                                    bool spanRegion, bool merge, LiftedPoints& out) {
     using Polygon = typename Storage::Polygon;
     Polygon buffers[2];
-    const Polygon& region = intersect2d(a.polygon, b.polygon, tolerance, buffers);
-    // Drop near-duplicate consecutive points produced where edges cross at a vertex.
+    bool repeatsDropped;
+    const Polygon& region = intersect2d(a.polygon, b.polygon, tolerance, buffers, repeatsDropped);
+    // Drop near-duplicate consecutive points produced where edges cross at a vertex (the clip's
+    // last edge did, where it ran).
     const double toleranceSquared = tolerance * tolerance;
     Polygon uniqueStorage;
-    Vec2* unique = uniqueStorage.reserve(region.size());
-    std::size_t count = 0;
-    for (const Vec2& p : region)
-        if (count == 0 || (p - unique[count - 1]).squaredNorm() > toleranceSquared) unique[count++] = p;
+    const Vec2* unique = region.data();
+    std::size_t count = region.size();
+    if (!repeatsDropped) {
+        Vec2* kept = uniqueStorage.reserve(region.size());
+        count = 0;
+        for (const Vec2& p : region)
+            if (count == 0 || (p - kept[count - 1]).squaredNorm() > toleranceSquared) kept[count++] = p;
+        unique = kept;
+    }
     while (count > 1 && (unique[0] - unique[count - 1]).squaredNorm() <= toleranceSquared) --count;
 
     // At most two points per vertex of the region: itself and a boundary crossing.
-    std::size_t emitted = out.size();
-    LiftedPoint* points = out.reserve(emitted + 2 * count);
+    LiftedPoint* const points = out.reserve(out.size() + 2 * count);
+    LiftedPoint* end = points + out.size();  // past the last point emitted
     auto emit = [&](const Vec2& q, double heightA, double heightB) {
         if (merge) {
             bool known = false;
-            for (std::size_t i = 0; i < emitted; ++i) known = known || (points[i].planar - q).squaredNorm() <= toleranceSquared;
+            for (const LiftedPoint* point = points; point != end; ++point)
+                known = known || (point->planar - q).squaredNorm() <= toleranceSquared;
             if (known) return;
         }
-        points[emitted++] = {q.x() * u + q.y() * v + 0.5 * (heightA + heightB) * normal, heightA - heightB, q, pieceA,
-                             pieceB};
+        *end++ = {q.x() * u + q.y() * v + 0.5 * (heightA + heightB) * normal, heightA - heightB, q, pieceA, pieceB};
     };
     // With `spanRegion`: the depth is affine along every edge of the region (both features are flat
     // there), so where an edge runs from contact into a clear gap, the contact region ends where
@@ -298,7 +326,7 @@ template <class Storage>
             heightA = nextA, heightB = nextB;
         }
     }
-    out.setSize(emitted);
+    out.setSize(static_cast<std::size_t>(end - points));
 }
 
 }  // namespace
