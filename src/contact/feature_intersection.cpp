@@ -115,8 +115,8 @@ template <bool kDropRepeats = false, class Polygon>
         // A point is kept or dropped, and an edge crosses from outside in or from inside out: one
         // test of p's side decides which crossing to look for (a NaN takes neither, as both
         // conditions written together did).
-        auto cut = [&](auto&& write) {
-            auto step = [&](const Vec2& p, const Vec2& q, double dq) {
+        auto cut = [&](auto&& write) __attribute__((always_inline)) {
+            auto step = [&](const Vec2& p, const Vec2& q, double dq) __attribute__((always_inline)) {
                 if (dp >= -slack) {
                     write(p);
                     if (dp > slack && dq < -slack) write(p + (q - p) * (dp / (dp - dq)));
