@@ -65,9 +65,9 @@ inline GrowthDistance boxGrowthDistance(const Vec3& halfA, const Vec3& halfB, co
     return result;
 }
 
-// growth_distance.cpp's boxGrowth as it was before it tested each facet against the exit so far
-// first (its |m|² and its guards only for a facet that can become or tie the exit), kept verbatim
-// as the reference that tests/box_box_test.cpp compares detail::boxGrowth with, bit for bit.
+// growth_distance.cpp's boxGrowth as it was at ac53fc8, before the box speed work (each facet's
+// |m|² and guards before its test against the exit so far, the edge facets one at a time), kept
+// verbatim as the reference that tests/box_box_test.cpp compares detail::boxGrowth with, bit for bit.
 inline BoxGrowth boxGrowthGuardsFirst(const Vec3& halfA, const Vec3& halfB, const Mat3& rotationB, const Vec3& centreOffset,
                                            double separation, double size) {
     BoxGrowth result;
