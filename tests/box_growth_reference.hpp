@@ -65,5 +65,79 @@ inline GrowthDistance boxGrowthDistance(const Vec3& halfA, const Vec3& halfB, co
     return result;
 }
 
+// growth_distance.cpp's boxGrowth as it was at ac53fc8, before the box speed work (each facet's
+// |m|² and guards before its test against the exit so far, the edge facets one at a time), kept
+// verbatim as the reference that tests/box_box_test.cpp compares detail::boxGrowth with, bit for bit.
+inline BoxGrowth boxGrowthGuardsFirst(const Vec3& halfA, const Vec3& halfB, const Mat3& rotationB, const Vec3& centreOffset,
+                                           double separation, double size) {
+    BoxGrowth result;
+    if (!(separation > 1e-12 * size)) return result;  // coincident contraction points
+    const Vec3 w = centreOffset / separation;
+    const Mat3 absoluteR = rotationB.cwiseAbs();
+    // The gauge: the ray leaves through the facet of least h_C(m)/|m·w|, and that ratio does not
+    // depend on the length of m, so an edge axis is compared unnormalised — no square root, no
+    // division — and ratios are compared by cross-multiplication: the exit so far is the fraction
+    // exitSupport/exitAlong (1/0: none yet, an infinite distance), and distance s/a lies below
+    // D·(1 − ε) exactly when s·exitAlong < exitSupport·a·(1 − ε) (a, exitAlong ≥ 0). Only a facet
+    // that becomes, or ties, the exit has its unit normal made (`normal()`).
+    double exitSupport = 1, exitAlong = 0;
+    Vec3 tiedNormals = Vec3::Zero();
+    // `along` = m·w, `supportValue` = h_C(m), `lengthSquared` = |m|².
+    auto consider = [&](double along, double supportValue, double lengthSquared, auto&& normal) {
+        const double a = std::abs(along);
+        if (a * a < 1e-24 * lengthSquared) return;  // |m̂·w| < 1e-12: the ray runs along the slab
+        const double distance = supportValue * exitAlong, exit = exitSupport * a;  // both scaled by a·exitAlong
+        if (distance < exit * (1 - 1e-12)) {
+            const Vec3 n = normal();
+            const Vec3 outward = along > 0 ? n : -n;
+            if (distance > exit * (1 - 2e-12)) tiedNormals += outward;
+            else tiedNormals = outward;
+            exitSupport = supportValue, exitAlong = a;
+        } else if (distance <= exit * (1 + 1e-12)) {
+            const Vec3 n = normal();
+            tiedNormals += along > 0 ? n : -n;
+        }
+    };
+    double faceOverlap = INFINITY;
+    for (int i = 0; i < 3; ++i) {
+        const double supportValue = halfA[i] + halfB.dot(absoluteR.row(i).transpose());
+        faceOverlap = std::min(faceOverlap, supportValue - std::abs(centreOffset[i]));
+        consider(w[i], supportValue, 1.0, [&] { return Vec3(Vec3::Unit(i)); });
+    }
+    for (int j = 0; j < 3; ++j) {
+        const Vec3 n = rotationB.col(j);
+        const double supportValue = halfA.dot(absoluteR.col(j)) + halfB[j];
+        faceOverlap = std::min(faceOverlap, supportValue - std::abs(n.dot(centreOffset)));
+        consider(n.dot(w), supportValue, 1.0, [&] { return n; });
+    }
+    // Unrolled, so that every index below is a constant (a fifth fewer instructions).
+#pragma GCC unroll 3
+    for (int i = 0; i < 3; ++i) {
+        // e_i × c has components −c[i2] at i1 and c[i1] at i2 ((i, i1, i2) cyclic).
+        const int i1 = i == 2 ? 0 : i + 1, i2 = i == 0 ? 2 : i - 1;
+#pragma GCC unroll 3
+        for (int j = 0; j < 3; ++j) {
+            const int j1 = j == 2 ? 0 : j + 1, j2 = j == 0 ? 2 : j - 1;
+            const double n1 = -rotationB(i2, j), n2 = rotationB(i1, j);
+            const double lengthSquared = n1 * n1 + n2 * n2;
+            if (!(lengthSquared > 1e-18)) continue;  // parallel edges (|m| ≤ 1e-9): covered by the face normals
+            // (row i) × e_j has components row[j2] at j1 and −row[j1] at j2.
+            const double supportValue = halfA[i1] * std::abs(n1) + halfA[i2] * std::abs(n2) +
+                                        (halfB[j1] * absoluteR(i, j2) + halfB[j2] * absoluteR(i, j1));
+            consider(n1 * w[i1] + n2 * w[i2], supportValue, lengthSquared, [&] {
+                const double length = std::sqrt(lengthSquared);
+                Vec3 n = Vec3::Zero();
+                n[i1] = n1 / length, n[i2] = n2 / length;
+                return n;
+            });
+        }
+    }
+    const double exitDistance = exitSupport / exitAlong;
+    result.valid = std::isfinite(exitDistance) && exitDistance > 0 && tiedNormals.norm() > 1e-6;
+    result.normal = tiedNormals.normalized();
+    result.faceOverlapLowerBound = faceOverlap;
+    result.exitDistance = exitDistance;
+    return result;
+}
 
 }  // namespace gdc::reference
