@@ -109,7 +109,8 @@ bool contains(const Vec2* hull, int size, const Vec2& p, double slack) {
 // applyCentroidRule's tests (every edge `continue`s). One pass over the edges makes the same
 // cross products, each edge's difference once for both centroids; false: the full tests decide.
 // Callgrind, an octagon kept to 6 points with two centroids: the rule's 300 instructions a
-// query -> ≈ 200 (called before the rule's own frame is set up).
+// query -> ≈ 200. Each caller makes this test before applyCentroidRule (before the rule's frame,
+// and before the convex-cycle ranking lists its free points), so the rule does not repeat it.
 bool centroidsInsideKeptHull(const RankingRule& rule, const Vec2* hull, int keptSize) {
     const int centroids = std::min(rule.centroidCount, 4);
     if (centroids < 1 || centroids > 2 || keptSize < 3 || !(rule.tolerance >= 0)) return false;
@@ -133,12 +134,12 @@ bool centroidsInsideKeptHull(const RankingRule& rule, const Vec2* hull, int kept
 // it; if the kept points leave the centroid outside, that body would tip over an edge the polygon
 // does not have. Then one kept point (never the first) is swapped for the point that brings every
 // such centroid back inside, the swap of largest area. `hull`: the kept hull (CCW, keptSize
-// vertices; overwritten), `free`: the points not kept, ascending. Returns wanted.
+// vertices; overwritten), `free`: the points not kept, ascending. Returns wanted. Called where
+// centroidsInsideKeptHull did not settle it.
 int applyCentroidRule(const RankPoint* points, int count, const RankingRule& rule, int wanted, int* chosen,
                       std::array<Vec2, kMaxHull>& hull, int keptSize, const int* free, int freeCount) {
     const int centroids = std::min(rule.centroidCount, 4);
     std::array<Vec2, kMaxHull> scratch;
-    if (centroidsInsideKeptHull(rule, hull.data(), keptSize)) return wanted;
     // A centroid needs the rule only if it is outside the kept hull and a free point lies beyond a
     // kept edge it is outside of (else that edge's line separates it from every point: it is
     // outside the whole polygon too) — two cheap tests before the whole polygon is built.
@@ -318,8 +319,9 @@ struct Leader {
             chosen[slot] = __builtin_ctz(freeMask);
             return wanted;
         }
-        bestGain = std::max(0.0, firstSlot.top);
-        if (slot > 3) {
+        if (slot == 3) {
+            bestGain = std::max(0.0, firstSlot.top);
+        } else {
             bestGain = 0;
             for (std::uint32_t m = freeMask; m != 0; m &= m - 1) bestGain = std::max(bestGain, value[__builtin_ctz(m)]);
         }
@@ -340,7 +342,7 @@ struct Leader {
     // dropped), counter-clockwise; the free points ascending.
     std::array<Vec2, kMaxHull> hull;
     for (int e = 0, vertex = first; e < hullSize; ++e, vertex = next[vertex]) hull[e] = points[vertex].planar;
-    if (centroidsInsideKeptHull(rule, hull.data(), hullSize)) return wanted;  // (applyCentroidRule's first test)
+    if (centroidsInsideKeptHull(rule, hull.data(), hullSize)) return wanted;
     int free[kMaxManifoldPoints];
     int freeCount = 0;
     for (std::uint32_t m = freeMask; m != 0; m &= m - 1) free[freeCount++] = __builtin_ctz(m);
@@ -575,8 +577,7 @@ int rankGrowingHull(const RankPoint* points, int count, const RankingRule& rule,
     }
     // (A polygon of more points than the hull buffers hold — only caps of many faces make one —
     // keeps the greedy set.)
-    if (!centroidRuleMayAct) return wanted;
-
+    if (!centroidRuleMayAct || centroidsInsideKeptHull(rule, hull.data(), hullSize)) return wanted;
     return applyCentroidRule(points, count, rule, wanted, chosen, hull, hullSize, free, freeCount);
 }
 
