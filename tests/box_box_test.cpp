@@ -3,7 +3,6 @@
 // pair, and pinned cases where the two could part (a face exactly at the angular tolerance, a
 // very thin box, exactly touching boxes, coincident centres).
 #include "contact/box_box.hpp"
-#include "box_growth_reference.hpp"
 #include "contact/collide_general.hpp"
 #include "box_poses.hpp"
 #include "contact_checks.hpp"
@@ -134,78 +133,24 @@ TEST_CASE("selectBoxFeature picks selectFeature's feature, ties and exact tolera
     CHECK(checked > 100000);
 }
 
-// boxGrowth compares the facets' ratios h_C(m)/|m·w| unnormalised and by cross-multiplication
-// (growth_distance.cpp); the closed form it replaced divided by each |m| first. The choices —
-// validity, the exit facet and its ties, so the normal — are the same (exact equality required);
-// the exit distance, and so the growth, is the same quantity rounded differently.
-TEST_CASE("boxGrowth chooses as the closed form it replaced did: the same normal bit for bit, the growth to rounding") {
-    std::mt19937 random(13);
-    std::uniform_real_distribution<double> unit(0, 1), symmetric(-1, 1);
-    Settings settings;
-    int valid = 0;
-    double largestGrowthDifference = 0;  // relative
-    for (int trial = 0; trial < 100000; ++trial) {
-        const Vec3 halfA = randomHalfExtents(random), halfB = randomHalfExtents(random);
-        const Polytope a = Polytope::box(halfA), b = Polytope::box(halfB);
-        // Random, axis-aligned (zero components, parallel edges) and edge-on orientations.
-        const double kind = unit(random);
-        Mat3 rotation = randomRotation(random);
-        if (kind < 0.2) rotation = Mat3::Identity();
-        else if (kind < 0.4) rotation = rotationAbout(Vec3::Unit(trial % 3), symmetric(random) * M_PI);
-        Vec3 offset = Vec3(symmetric(random), symmetric(random), symmetric(random)) * (halfA.norm() + halfB.norm());
-        if (unit(random) < 0.2) offset[trial % 3] = 0;
-        if (unit(random) < 0.02) offset.setZero();
-        const Pose bInA{rotation, offset};
-        const detail::MinkowskiDifference pair(a, b, bInA, settings.bruteForceSupportLimit);
-        const Vec3 centreOffset = pair.centreB - pair.centreA;
-        const double separation = centreOffset.norm();
-        const detail::BoxGrowth fast =
-            detail::boxGrowth(halfA, halfB, rotation, centreOffset, separation, a.radius() + b.radius());
-        const detail::GrowthDistance general = detail::growthDistance(pair, settings, false);
-        INFO("trial " << trial);
-        REQUIRE(fast.valid == general.valid);
-        if (!general.valid) continue;
-        ++valid;
-        // growthDistance answers two boxes with boxGrowth; the reference is the closed form it had.
-        const detail::GrowthDistance reference =
-            reference::boxGrowthDistance(halfA, halfB, rotation, centreOffset, separation);
-        REQUIRE(reference.valid);
-        REQUIRE(fast.normal == reference.normal);
-        REQUIRE(general.normal == reference.normal);
-        REQUIRE(fast.faceOverlapLowerBound == reference.faceOverlapLowerBound);
-        REQUIRE(general.faceOverlapLowerBound == reference.faceOverlapLowerBound);
-        REQUIRE(general.growth == separation / fast.exitDistance);
-        const double difference = std::abs(general.growth - reference.growth) / reference.growth;
-        largestGrowthDifference = std::max(largestGrowthDifference, difference);
-        REQUIRE(difference <= 1e-14);
-    }
-    std::printf("boxGrowth vs the closed form it replaced, %d valid poses: same normals; largest relative growth "
-                "difference %.3g\n",
-                valid, largestGrowthDifference);
-    CHECK(valid > 80000);
-}
-
-// boxGrowth tests each facet against the exit so far before its |m|² and its guards (a parallel
-// edge pair, a ray along the slab); the form it replaced (box_growth_reference.hpp,
-// boxGrowthGuardsFirst) paid them for every facet. Everything it returns must be the same double:
-// the normal (ties included), the face-overlap bound, the exit distance, validity. Poses of every
-// kind of box pair (box_poses.hpp: resting and near-parallel faces, faces near the tolerance,
-// edge–edge, vertex–face, deep, touching, scattered and mostly separated), and exactly
+// boxGrowth against the growth distance's definition (design.md): with K = (A − c_A) − (B − c_B)
+// and d = c_B − c_A, σ = max over K's facet normals m of (m·d) / h_K(m), and the normal is the
+// maximiser. For two boxes K's facet normals are among the 15 separating axes — A's three face
+// normals, B's three and the nine cross products — and h_K(m) = halfA·|m| + halfB·|Rᵀm|. The
+// oracle evaluates all 15 directly; boxGrowth may skip, reorder and guard them as it likes. Where
+// two axes tie within rounding at the maximum the normal may be either (or their sum), so only
+// σ is compared there. The face-overlap bound must be a lower bound of the pair's overlap along
+// every face normal of either box. Poses of every kind of box pair (box_poses.hpp) and exactly
 // axis-aligned or single-axis turns (zero components: parallel edges, ties between facets).
-TEST_CASE("boxGrowth equals the form that guarded every facet first, bit for bit (10^5 poses per kind)") {
+TEST_CASE("boxGrowth is the growth distance over the 15 axes, its bound below every face overlap (10^5 poses per kind)") {
     const char* names[] = {"resting face", "face near the tolerance", "edge-edge", "vertex-face", "deep", "nearly touching",
                            "scattered", "axis-aligned or turned about one axis"};
-    auto bits = [](double x) {
-        std::uint64_t b;
-        std::memcpy(&b, &x, sizeof b);
-        return b;
-    };
     constexpr int kPoses = scaledForSanitizers(100000);
     for (int k = 0; k <= int(BoxPoseKind::Count); ++k) {
         std::mt19937 random(20261127 + 31 * k);
         std::uniform_real_distribution<double> unit(0, 1), symmetric(-1, 1);
-        int mismatches = 0, valid = 0, ties = 0;
-        double largest = 0;  // largest difference of any number returned (0 when bit-identical)
+        int valid = 0, untied = 0;
+        double largestGrowth = 0, largestNormal = 0, largestBoundExcess = -INFINITY;
         for (int trial = 0; trial < kPoses; ++trial) {
             const Vec3 halfA = randomHalfExtents(random), halfB = randomHalfExtents(random);
             Pose bInA;
@@ -222,34 +167,58 @@ TEST_CASE("boxGrowth equals the form that guarded every facet first, bit for bit
                 bInA = Pose{rotation, offset};
             }
             const double size = halfA.norm() + halfB.norm();
-            const Vec3 centreOffset = bInA.position;
-            const double separation = centreOffset.norm();
-            const detail::BoxGrowth fast = detail::boxGrowth(halfA, halfB, bInA.rotation, centreOffset, separation, size);
-            const detail::BoxGrowth former =
-                reference::boxGrowthGuardsFirst(halfA, halfB, bInA.rotation, centreOffset, separation, size);
-            const bool same = fast.valid == former.valid && bits(fast.normal.x()) == bits(former.normal.x()) &&
-                              bits(fast.normal.y()) == bits(former.normal.y()) &&
-                              bits(fast.normal.z()) == bits(former.normal.z()) &&
-                              bits(fast.faceOverlapLowerBound) == bits(former.faceOverlapLowerBound) &&
-                              bits(fast.exitDistance) == bits(former.exitDistance);
-            if (std::isfinite(former.exitDistance) && std::isfinite(fast.exitDistance))
-                largest = std::max(largest, std::abs(fast.exitDistance - former.exitDistance));
-            if (former.normal.allFinite() && fast.normal.allFinite())
-                largest = std::max(largest, (fast.normal - former.normal).norm());
-            if (std::isfinite(former.faceOverlapLowerBound) && std::isfinite(fast.faceOverlapLowerBound))
-                largest = std::max(largest, std::abs(fast.faceOverlapLowerBound - former.faceOverlapLowerBound));
-            mismatches += !same;
-            valid += former.valid;
-            // A normal between the axes where the offset has a zero component: mostly a sum of tied facets.
-            ties += former.valid && (former.normal.array() != 0).count() >= 2 && (centreOffset.array() == 0).any();
+            const Mat3& r = bInA.rotation;
+            const Vec3& d = bInA.position;
+            const double separation = d.norm();
+            const detail::BoxGrowth fast = detail::boxGrowth(halfA, halfB, r, d, separation, size);
+            // The oracle: σ and its maximiser over the 15 axes, and the runner-up for ties.
+            auto support = [&](const Vec3& m) { return halfA.dot(m.cwiseAbs()) + halfB.dot((r.transpose() * m).cwiseAbs()); };
+            double best = -INFINITY, second = -INFINITY;
+            Vec3 bestAxis = Vec3::Zero();
+            auto consider = [&](const Vec3& m) {
+                if (!(m.norm() > 1e-9)) return;  // parallel edges: no facet
+                const double sigma = std::abs(m.dot(d)) / support(m);  // m and −m: both facets
+                const Vec3 unitAxis = (m.dot(d) < 0 ? -m : m).normalized();
+                if (sigma > best) {
+                    if (!(bestAxis - unitAxis).isZero(1e-9)) second = best;
+                    best = sigma, bestAxis = unitAxis;
+                } else if (sigma > second && !(bestAxis - unitAxis).isZero(1e-9)) {
+                    second = sigma;
+                }
+            };
+            for (int i = 0; i < 3; ++i) consider(Vec3::Unit(i)), consider(r.col(i));
+            for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j) consider(Vec3::Unit(i).cross(r.col(j)));
+            INFO(names[k] << ", trial " << trial);
+            if (!(separation > 0)) {
+                REQUIRE_FALSE(fast.valid);  // coincident centres: no ray
+                continue;
+            }
+            REQUIRE(fast.valid);
+            ++valid;
+            const double growth = separation / fast.exitDistance;
+            largestGrowth = std::max(largestGrowth, std::abs(growth - best) / std::abs(best));
+            REQUIRE(std::abs(growth - best) <= 1e-12 * std::abs(best));
+            if (best - second > 1e-9 * std::abs(best)) {
+                ++untied;
+                const double normalError = (fast.normal.normalized() - bestAxis).norm();
+                largestNormal = std::max(largestNormal, normalError);
+                REQUIRE(normalError <= 1e-12);
+            }
+            // The bound: below the overlap along each of the twelve face normals.
+            auto overlap = [&](const Vec3& m) { return support(m) - m.dot(d); };
+            for (int i = 0; i < 3; ++i)
+                for (double sign : {-1.0, 1.0})
+                    for (const Vec3& m : {Vec3(sign * Vec3::Unit(i)), Vec3(sign * r.col(i))}) {
+                        largestBoundExcess = std::max(largestBoundExcess, fast.faceOverlapLowerBound - overlap(m));
+                        REQUIRE(fast.faceOverlapLowerBound <= overlap(m) + 1e-12 * size);
+                    }
         }
-        std::printf("boxGrowth vs its guards-first form, %s: %d poses, %d valid, %d normals between the axes with "
-                    "a zero offset component; largest difference %.3g; %d not bit-identical\n",
-                    names[k], kPoses, valid, ties, largest, mismatches);
-        INFO(names[k]);
-        CHECK(mismatches == 0);
-        CHECK(largest == 0);
+        std::printf("boxGrowth vs the 15-axis oracle, %s: %d poses, %d valid, %d with one maximising axis; largest "
+                    "relative growth error %.3g, normal error %.3g; bound above a face overlap by at most %.3g\n",
+                    names[k], kPoses, valid, untied, largestGrowth, largestNormal, largestBoundExcess);
         CHECK(valid > kPoses / 2);
+        CHECK(untied > valid / 2);
     }
 }
 

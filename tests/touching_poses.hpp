@@ -1,6 +1,6 @@
-// Random hulls and random poses of two polytopes that nearly touch, shared by the tests that prove
-// a faster path equal to the one it replaces (depth_confirmation_test, overlap_bounds_test,
-// hull_gauge_test), and the comparison of the two paths' manifolds they run.
+// Random hulls and random poses of two polytopes that nearly touch, shared by the pipeline's
+// property tests (contact_contract_test, hull_carry_test, hull_gauge_test), and the check of ODE's
+// contact contract they run on each answer.
 #pragma once
 
 #include "geometry/growth_distance.hpp"
@@ -90,19 +90,30 @@ inline double requireSameManifold(const Manifold& x, const Manifold& y, double s
     return difference;
 }
 
-/// Runs `fast` and `full` — two ways of calling the pipeline, (a, poseA, b, poseB, settings) →
-/// Manifold — on `count` random touching poses of a and b (every other one resting; overlaps up
-/// to `maxOverlap` of the pair's size, and up to 0.2 on every third pose where `deepEveryThird`),
-/// with the budget, margin and spanning varied per pose. Requires the same count and features and
-/// positions, depths and normal within `tolerance` of the pair's size; prints the largest difference
-/// under `what` and `name`, and checks that most poses touch.
-template <class Fast, class Full>
-void requireSameManifolds(const char* what, const char* name, const Polytope& a, const Polytope& b, int count,
-                          std::uint32_t seed, double maxOverlap, bool deepEveryThird, double tolerance, Fast fast,
-                          Full full) {
+/// Runs `collide` — (a, poseA, b, poseB, settings) → Manifold — on `count` random touching poses of
+/// a and b (every other one resting; overlaps up to `maxOverlap` of the pair's size, and up to 0.2
+/// on every third pose where `deepEveryThird`), with the budget, margin and spanning varied per
+/// pose, and checks each answer against measures of its own (ODE's contact contract):
+/// - the normal is a finite unit vector, every depth and position finite;
+/// - each contact's point on A (position + depth/2·normal) lies in A and its point on B
+///   (position − depth/2·normal) in B, within 1e-9 of the pair's size;
+/// - the deepest depth carries the penetration along the normal: within [0.96, 1.04] of the exit
+///   distance of the ray along n through A − B (separationAlong, the GJK ray cast, to its own
+///   tolerance) — moving B by 0.96·depth still touches, by 1.04·depth separates.
+/// Prints the largest relative depth error under `what` and `name`; checks that most poses touch.
+template <class Collide>
+void requireContactContract(const char* what, const char* name, const Polytope& a, const Polytope& b, int count,
+                            std::uint32_t seed, double maxOverlap, bool deepEveryThird, Collide collide) {
     std::mt19937 random(seed);
     int touching = 0;
-    double largestDifference = 0;
+    double largestDepthError = 0, largestOutside = 0;
+    const double size = a.radius() + b.radius();
+    auto outside = [](const Polytope& shape, const Pose& pose, const Vec3& world) {
+        const Vec3 local = pose.applyInverse(world);
+        double worst = -INFINITY;
+        for (const Polytope::Face& face : shape.faces()) worst = std::max(worst, face.normal.dot(local) - face.offset);
+        return worst;
+    };
     for (int i = 0; i < count; ++i) {
         const bool resting = i % 2 == 0;
         const auto [poseA, poseB] =
@@ -111,15 +122,32 @@ void requireSameManifolds(const char* what, const char* name, const Polytope& a,
         settings.maxContacts = 1 + i % kMaxManifoldPoints;
         settings.margin = i % 5 == 0 ? 0.01 * a.radius() : 0.0;
         settings.spanContactRegion = i % 7 == 0;
-        const Manifold x = fast(a, poseA, b, poseB, settings);
-        const Manifold y = full(a, poseA, b, poseB, settings);
+        const Manifold m = collide(a, poseA, b, poseB, settings);
         INFO(name << " pose " << i);
-        if (x.empty() && y.empty()) continue;
+        if (m.empty()) continue;
         ++touching;
-        largestDifference = std::max(largestDifference, requireSameManifold(x, y, a.radius() + b.radius(), tolerance));
+        REQUIRE(m.normal.allFinite());
+        REQUIRE(std::abs(m.normal.norm() - 1) <= 1e-12);
+        for (int k = 0; k < m.pointCount; ++k) {
+            const ContactPoint& p = m.points[k];
+            REQUIRE(p.position.allFinite());
+            REQUIRE(std::isfinite(p.depth));
+            const double out = std::max(outside(a, poseA, p.position + 0.5 * p.depth * m.normal),
+                                        outside(b, poseB, p.position - 0.5 * p.depth * m.normal));
+            largestOutside = std::max(largestOutside, out / size);
+            REQUIRE(out <= 1e-9 * size);
+        }
+        const Vec3 normalInA = poseA.rotation.transpose() * m.normal;
+        const detail::SeparationAlong exit = detail::separationAlong(a, b, poseA.relative(poseB), normalInA, settings);
+        if (!exit.valid || exit.distance < 0) continue;  // apart along n: a speculative contact
+        const double deepest = m.maxDepth(), slack = 1e-9 * size + 2 * settings.rayCastTolerance * size;
+        largestDepthError = std::max(largestDepthError, std::abs(deepest - exit.distance) / std::max(exit.distance, 1e-300));
+        REQUIRE(deepest >= 0.96 * exit.distance - slack);
+        REQUIRE(deepest <= 1.04 * exit.distance + slack);
     }
-    std::printf("%s, %s: %d poses (%d touching), largest difference %.3g x size\n", what, name, count, touching,
-                largestDifference);
+    std::printf("%s, %s: %d poses (%d touching), deepest depth within %.3g of the exit along n, points at most "
+                "%.3g x size outside their body\n",
+                what, name, count, touching, largestDepthError, largestOutside);
     CHECK(touching > count * 3 / 4);  // the poses exercise contact, not just separation
 }
 

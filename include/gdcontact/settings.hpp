@@ -84,20 +84,14 @@ struct Settings {
     /// Points beyond it are dropped by importance (the deepest, the farthest from it, then the
     /// largest added area, keeping the bodies' centroids inside; docs/algorithm.md, "The contact
     /// set the solver gets"); every prefix of the returned points is the best of its length, so a
-    /// caller's smaller limit gets the best points. 6 (default) is the fewest that stood in every
-    /// scene and stepper of the solver benchmark wherever 8 and ODE's dBox stand (50 seeds each,
-    /// 200 for the 1:20 plates under dWorldQuickStep; docs/algorithm.md "The budget over every
-    /// scene"), with up to a quarter fewer rows than 8 on a box–box octagon (a stack's near-square
-    /// octagon loses next to no area; a 45° turn's regular one keeps 85 %): the whole step on
-    /// identical states 0.78–0.98× that of 8 in stacks of boxes, plates and hulls. 8 keeps a box–box
-    /// octagon whole. 5 sinks a stack of 1:20 plates under dWorldQuickStep (20 iterations) in 5
-    /// of 200 seeds where 6, 8 and dBox sink in none, and lets stacked hexagonal prisms drift 2–3×
-    /// as far; 4 — what Bullet, PhysX and Box3D keep — in 32 of 200: the cut-off Gauss–Seidel holds a
-    /// stack less firmly with fewer rows per pair, whichever are kept (ODE's own box collider
-    /// limited to 4 sinks as deep); under dWorldStep, or with 30 iterations or more, 4 stands
-    /// wherever 8 does and is the cheapest (dWorldStep's whole step 0.4–0.75× dBox's in stacks of
-    /// boxes and plates). Smaller: 1 keeps the deepest point, 2 a segment, 3 a triangle (a
-    /// 20-stack falls). Bounds [1, 16]: 16 is the size of a Manifold (kMaxManifoldPoints).
+    /// caller's smaller limit gets the best points. Fewer: fewer rows for the solver (cheaper,
+    /// above all under dWorldStep), at a support region held by fewer points — under
+    /// dWorldQuickStep's cut-off Gauss–Seidel a stack is held less firmly with fewer rows per
+    /// pair. 6 (default) is the fewest that stands wherever 8 and ODE's dBox stand in the solver
+    /// benchmark over seeds; 8 keeps a box–box octagon whole; 4 is what Bullet, PhysX and Box3D
+    /// keep and suffices under dWorldStep; 1 keeps the deepest point, 2 a segment, 3 a triangle.
+    /// The measurements: docs/algorithm.md, "The budget over every scene".
+    /// Bounds [1, 16]: 16 is the size of a Manifold (kMaxManifoldPoints).
     int maxContacts = 6;
 
     /// Support mapping — polytopes with at most this many vertices are searched by brute force,

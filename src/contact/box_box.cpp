@@ -10,7 +10,7 @@
 // confirmation that may add a point) the hooks delegate and the pair goes to it whole.
 #include "contact/box_box.hpp"
 
-#include "geometry/box_shape.hpp"
+#include "shapes/box_shape.hpp"
 #include "contact/collide_general.hpp"
 #include "contact/feature_intersection.hpp"
 #include "contact/gauss_map.hpp"
@@ -80,12 +80,10 @@ namespace {
 // The box pair's hooks for the one composition (pipeline.hpp): each stage in the boxes' closed
 // form; the rare branches (no growth-distance normal, the overhang check, an empty intersection, a
 // depth confirmation that may add a point) are delegated to the general hooks whole.
-template <bool SmallFeatures>
 struct BoxPairHooks {
     static constexpr bool kDelegatesRareCases = true;
-    // Box features (a vertex, an edge, a face's four corners) intersected in fixed arrays, unless a
-    // test asks for the general intersection to compare with (collideBoxBoxInto's flag).
-    static constexpr bool kSmallFeatures = SmallFeatures;
+    // Box features (a vertex, an edge, a face's four corners) intersected in fixed arrays.
+    static constexpr bool kSmallFeatures = true;
     explicit BoxPairHooks(const Settings& settings) : settings(settings) {}
     const Settings& settings;
     LazyAngularTolerance angularTolerance{settings.angularTolerance};
@@ -150,9 +148,9 @@ namespace {
 
 // The box pair's hooks for a caller that needs the points only in `order` (pipeline.hpp, OrderFlag).
 template <ImportanceOrder order>
-struct BoxPairHooksIn : BoxPairHooks<true> {
+struct BoxPairHooksIn : BoxPairHooks {
     static constexpr ImportanceOrder kOrder = order;
-    explicit BoxPairHooksIn(const Settings& settings) : BoxPairHooks<true>(settings) {}
+    explicit BoxPairHooksIn(const Settings& settings) : BoxPairHooks(settings) {}
 };
 
 // The delegated rare cases keep the full ranking (collideGeneral): the same answer either way.
@@ -168,7 +166,7 @@ void collideBoxBoxWith(const Polytope& a, const Pose& poseA, const Polytope& b, 
 
 void collideBoxBoxInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
                        const Settings& settings, Manifold& manifold) {
-    collideBoxBoxWith<BoxPairHooks<true>>(a, poseA, b, poseB, settings, manifold);
+    collideBoxBoxWith<BoxPairHooks>(a, poseA, b, poseB, settings, manifold);
 }
 
 template <ImportanceOrder order>
@@ -180,10 +178,9 @@ template void collideBoxBoxInto<ImportanceOrder::AmongEqualDepths>(const Polytop
                                                                    const Pose&, const Settings&, Manifold&);
 
 Manifold collideBoxBox(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
-                       const Settings& settings, bool smallIntersection) {
+                       const Settings& settings) {
     Manifold manifold;
-    if (smallIntersection) collideBoxBoxInto(a, poseA, b, poseB, settings, manifold);
-    else collideBoxBoxWith<BoxPairHooks<false>>(a, poseA, b, poseB, settings, manifold);
+    collideBoxBoxInto(a, poseA, b, poseB, settings, manifold);
     return manifold;
 }
 

@@ -4,7 +4,7 @@
 #include <gdcontact/collide.hpp>
 
 #include "contact/half_space.hpp"
-#include "geometry/box_shape.hpp"
+#include "shapes/box_shape.hpp"
 #include "geometry/growth_distance.hpp"
 
 #include <cmath>
@@ -22,10 +22,8 @@ bool boxBoxApplies(const Polytope& a, const Polytope& b, const Settings& setting
 /// in closed form, faces and edges intersected in fixed arrays, and the depth confirmation's ray
 /// cast replaced by the exact exit of the ray through the zonotope A − B (run, with the rest of
 /// the general pipeline, only where that exit says the cast could add a point).
-/// `smallIntersection` false: stage 3 through the general intersectFeatures, the path the fixed
-/// arrays' intersectSmallFeatures replaced (kept for tests/small_intersection_test.cpp to compare).
 Manifold collideBoxBox(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
-                       const Settings& settings, bool smallIntersection = true);
+                       const Settings& settings);
 
 /// collideBoxBox written into `out` (normal, pointCount, points [0, pointCount), features), for a
 /// caller that keeps its answer in a Manifold of its own (the ODE adapter): no 0.5 KB Manifold

@@ -10,8 +10,7 @@ using Polygon2 = SmallVector<Vec2, 16>;
 
 // Stage 3's storage, chosen by the features: growable vectors (SmallVector, inline for the common
 // sizes, spilling for large faces and caps), or — for features of at most four points without
-// pieces, a box's — fixed arrays of the worst case, with no capacity check and no spill (the box
-// pair's clip and lift in fixed arrays cost about 130 fewer instructions a face query, callgrind).
+// pieces, a box's — fixed arrays of the worst case, with no capacity check and no spill.
 // One algorithm serves both: the functions below are templates on the storage.
 
 // SmallVector's interface (the part stage 3 uses) over a fixed array of N: the caller guarantees
@@ -60,7 +59,7 @@ template <class Polygon>
     Vec2* points = out.reserve(n);
     // Both coordinates at once: (p·u, p·v) = p.x·(u.x, v.x) + p.y·(u.y, v.y) + p.z·(u.z, v.z), each
     // coordinate the dot product's own sum in its own order ((x + y) + z), so the same bits in
-    // half the instructions (a tenth of a box face pair's stage 3, callgrind).
+    // half the instructions.
     const Vec2 alongX(u.x(), v.x()), alongY(u.y(), v.y()), alongZ(u.z(), v.z());
     for (int i = 0; i < n; ++i) {
         const Vec3& p = feature.points[i];
@@ -380,8 +379,7 @@ void intersectFeatures(const FeatureView& a, const FeatureView& b, const Vec3& n
 // or face): the same algorithm on fixed arrays (SmallFeatureStorage), so the same points to the bit.
 // The bits matter beyond rounding: the centroid rule's choice among the equal-area triangles of a
 // rectangular region is decided by the clip's last bits (docs/algorithm.md).
-// tests/small_intersection_test.cpp checks both equal, bit for bit, on 10^5 poses of each kind of
-// box pair.
+// tests/small_intersection_test.cpp checks both on 10^5 poses of each kind of box pair.
 void intersectSmallFeatures(const FeatureView& a, const FeatureView& b, const Vec3& normal, double tolerance,
                             double minimumDepth, bool spanRegion, LiftedPoints& out) {
     Vec3 u, v;

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "geometry/small_vector.hpp"
+#include "shapes/feature.hpp"
 
 #include <gdcontact/manifold.hpp>
 
@@ -14,41 +15,6 @@
 #include <vector>
 
 namespace gdc::detail {
-
-/// A feature in the common (A's) frame: its vertices and, for a face, its plane.
-struct FeatureGeometry {
-    FeatureType type = FeatureType::Vertex;
-    SmallVector<Vec3, 16> points;  // 1 for a vertex, 2 for an edge, the loop of a face
-    Vec3 planeNormal = Vec3::Zero();  // faces only
-    double planeOffset = 0;
-    // A face may come with its cap: the near-coplanar neighbours within the angular tolerance
-    // (gauss_map.hpp). Then `capFaces` holds every face of the cap as a face feature of its own
-    // (the selected one first); the intersection is the union of the pairwise intersections of
-    // the two features' faces, each point lifted onto its own two faces, so every contact lies on
-    // both surfaces exactly however the cap bends.
-    std::vector<FeatureGeometry> capFaces;
-};
-
-/// A feature as stage 3 and the normal's refinement read it, whoever stores it: its points (1 for a
-/// vertex, 2 for an edge, a face's loop) and, for a face, its plane, with the pieces of a face's cap
-/// or an edge's chain where it has them. A box's feature lives in fixed arrays (box_shape.hpp,
-/// BoxFeature: no pieces), a hull's in a FeatureGeometry; the view owns nothing, so the stages are
-/// written once for both and a box pays for no container.
-struct FeatureView {
-    FeatureType type = FeatureType::Vertex;
-    const Vec3* points = nullptr;
-    int count = 0;
-    Vec3 planeNormal = Vec3::Zero();  // faces only
-    double planeOffset = 0;
-    const FeatureGeometry* pieces = nullptr;  // FeatureGeometry::capFaces; nullptr and 0 for none
-    int pieceCount = 0;
-};
-
-inline FeatureView view(const FeatureGeometry& feature) {
-    return {feature.type,        feature.points.data(), static_cast<int>(feature.points.size()),
-            feature.planeNormal, feature.planeOffset,   feature.capFaces.data(),
-            static_cast<int>(feature.capFaces.size())};
-}
 
 struct LiftedPoint {
     Vec3 position;   // midway between the two features, in the common frame

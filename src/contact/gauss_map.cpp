@@ -16,8 +16,7 @@ Feature selectFeature(const Polytope& polytope, const Vec3& direction, int suppo
     // The adjacency read through plain pointers (so their bounds are not reloaded after every
     // push_back) and the face test as scalar code, the same operations in the same order as
     // Eigen's dot ((n₀d₀ + n₁d₁) + n₂d₂), so the same bits: the face test is most of a hull's
-    // feature selection (callgrind, a hull resting on a plane through the ODE adapter: ~460
-    // instructions a call), and Eigen spends packet shuffles on 3-vectors.
+    // feature selection, and Eigen spends packet shuffles on 3-vectors.
     const int vertex = support;
     const Vec3* vertices = polytope.vertices().data();
     const int* neighborOffsets = polytope.neighborOffsets().data();

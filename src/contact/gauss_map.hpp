@@ -11,34 +11,11 @@
 #include <gdcontact/polytope.hpp>
 
 #include "geometry/small_vector.hpp"
+#include "shapes/feature.hpp"
 
 #include <cmath>
 
 namespace gdc::detail {
-
-/// The Gauss-map angular tolerance as its cosine and sine (computed once per query). Tolerances
-/// are small angles, where the Taylor series to x¹⁶ is exact in double precision (the first
-/// omitted term is below 1e-17 for x ≤ 0.8) at a fraction of the cost of the library call, which
-/// showed in the profile of the cheapest queries (a hull on a plane); larger angles use it.
-struct AngularTolerance {
-    double cosine;
-    double sine;
-    explicit AngularTolerance(double radians) {
-        if (!(std::abs(radians) <= 0.8)) {
-            cosine = std::cos(radians), sine = std::sin(radians);
-            return;
-        }
-        const double x2 = radians * radians;
-        // Horner form of Σ (−x²)^k / (2k)! and x·Σ (−x²)^k / (2k+1)!, k = 0…8.
-        double c = 1.0 / 20922789888000.0, s = 1.0 / 355687428096000.0;
-        constexpr double kCosine[] = {-1.0 / 87178291200.0, 1.0 / 479001600.0, -1.0 / 3628800.0, 1.0 / 40320.0,
-                                      -1.0 / 720.0,          1.0 / 24.0,        -1.0 / 2.0,        1.0};
-        constexpr double kSine[] = {-1.0 / 1307674368000.0, 1.0 / 6227020800.0, -1.0 / 39916800.0, 1.0 / 362880.0,
-                                    -1.0 / 5040.0,           1.0 / 120.0,        -1.0 / 6.0,        1.0};
-        for (int k = 0; k < 8; ++k) c = c * x2 + kCosine[k], s = s * x2 + kSine[k];
-        cosine = c, sine = s * radians;
-    }
-};
 
 /// The feature of `polytope` whose Gauss-map region is nearest `direction` (unit, local frame),
 /// within the angular tolerance for faces and edges. `support` is the polytope's support vertex
@@ -91,28 +68,5 @@ void edgeChain(const Polytope& polytope, int edge, const Vec3& direction, const 
 /// The vertices of a face's cap (faceCap), each once, appended in the order the cap's loops meet
 /// them, in the polytope's frame.
 void capVertices(const Polytope& polytope, const SmallVector<int, 8>& cap, SmallVector<int, 32>& vertices);
-
-/// The feature's vertices in order (1 for a vertex, 2 for an edge, the CCW loop of a face).
-/// Inline: a few loads, which out of line cost every query a call (callgrind, a hull on a plane
-/// through the ODE adapter: 16 instructions a call plus the call's own).
-inline int featureVertices(const Polytope& polytope, const Feature& feature, const int** indices, int* storage) {
-    switch (feature.type) {
-        case FeatureType::Vertex:
-            storage[0] = feature.index;
-            *indices = storage;
-            return 1;
-        case FeatureType::Edge:
-            storage[0] = polytope.edges()[feature.index].tail;
-            storage[1] = polytope.edges()[feature.index].head;
-            *indices = storage;
-            return 2;
-        case FeatureType::Face:
-        default: {
-            const Polytope::Face& face = polytope.faces()[feature.index];
-            *indices = polytope.faceVertices().data() + face.first;
-            return face.count;
-        }
-    }
-}
 
 }  // namespace gdc::detail

@@ -9,7 +9,7 @@
 // same Manifold. collide() dispatches.
 #include "contact/half_space.hpp"
 
-#include "geometry/box_shape.hpp"
+#include "shapes/box_shape.hpp"
 #include "contact/collide_general.hpp"
 #include "contact/gauss_map.hpp"
 #include "contact/pipeline.hpp"
@@ -82,7 +82,7 @@ struct SmallHullOnPlaneHooks : OnPlaneHooks {
         return frame.plane.offset - lowest;
     }
     void selectFeatures(const HalfSpaceFrame& frame, const Vec3& normal, bool /*first*/, Manifold& manifold) {
-        // Made after stage 1's separation test: its series cost ~45 instructions.
+        // Made after stage 1's separation test: a separated pair never needs its cosine and sine.
         const AngularTolerance angularTolerance = given ? *given : AngularTolerance(settings.angularTolerance);
         manifold.featureA = selectFeature(frame.a, normal, deepest, angularTolerance);
         manifold.featureB = planeFeature();
@@ -119,10 +119,8 @@ struct AnyPolytopeOnPlaneHooks : OnPlaneHooks {
 
 // The entry points write into `manifold` (the caller's; composeStages resets it to an empty
 // answer): a Manifold made here and copied out cost its 0.5 KB of zeroed points on every call.
-// Each shape's composition is a function of its own, called straight from the entry points: so
-// both cost what they cost before the hooks (bench/callgrind_counts.py … box_plane/face
-// convex_plane/face hull_plane/8). The box's inlined into a dispatcher that called the hull's cost
-// a box–plane query 0.8 % and a hull–plane query 2 % more; both inlined there, the box's 1.7 %.
+// Each shape's composition is a function of its own, called straight from the entry points:
+// inlined into one dispatcher, each made the other's queries dearer (docs/benchmarks.md).
 // A shape's hooks asking stage 3 for the points in `order` (a template argument: the ranking's
 // test is compiled out of the Full path, which stays the instructions it was).
 template <class Hooks, ImportanceOrder order>

@@ -56,8 +56,8 @@ UnitHalfSpace normaliseHalfSpace(const HalfSpace& b);
 /// caller that writes the points ordered by depth itself, keeping the order of equal depths (the
 /// ODE adapter's writeContacts): there the importance order decides only between points of equal
 /// depth, so where every depth differs from every other the points may come in any order — the
-/// ranking a face's points took (a plane basis, planar coordinates, rankAllOfFew: about a third of
-/// a box–plane query, callgrind) is then left out. Only where the query keeps every point (no
+/// ranking a face's points took (a plane basis, planar coordinates, rankAllOfFew: a large part of a
+/// box–plane query) is then left out. Only where the query keeps every point (no
 /// reduction): the set of points is the same either way, and the depths to the bit.
 enum class ImportanceOrder { Full, AmongEqualDepths };
 
@@ -73,14 +73,14 @@ void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const UnitHalfSp
                           Manifold& out);
 
 /// The same, with `angularTolerance` = AngularTolerance(settings.angularTolerance) given by a
-/// caller that keeps it across calls (the ODE adapter's thread cache): its series cost a hull's
-/// query ~45 instructions on every call (callgrind, a hull on a plane). The same answer, to the bit.
+/// caller that keeps it across calls (the ODE adapter's thread cache), so that its cosine and sine
+/// are not recomputed per query. The same answer.
 void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b, const Settings& settings,
                           const AngularTolerance& angularTolerance, Manifold& out);
 
 /// The two above with the points in `order` (instantiated for ImportanceOrder::AmongEqualDepths;
-/// Full is the functions above). A template argument, not a parameter: a seventh argument went
-/// on the stack and cost every call ~10 instructions of frame (callgrind).
+/// Full is the functions above). A template argument, not a parameter: a seventh argument would go
+/// on the stack of every call.
 template <ImportanceOrder order>
 void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b, const Settings& settings,
                           Manifold& out);

@@ -49,7 +49,7 @@ public:
     // the Eigen expressions collideGeneral evaluates (x + 0.5·depth·m; a dot product is
     // (x₀y₀ + x₁y₁) + x₂y₂; R·x + p row by row, see emit), so the same bits (manifold_dump) — but without the packet
     // shuffles Eigen's SSE code spends on 3-vectors, which were the larger part of a box–plane
-    // call's lifting and emitting (callgrind: ~680 instructions for four points).
+    // call's lifting and emitting.
     void add(const Vec3& x, double depth) {
         const double half = 0.5 * depth;
         x_[count_] = x.x() + half * mx_;

@@ -1,5 +1,6 @@
 #include "contact/reduction.hpp"
 #include "contact/rank_few.hpp"
+#include "contact/ranking_hull.hpp"
 
 #include <algorithm>
 #include <array>
@@ -10,211 +11,6 @@
 namespace gdc::detail {
 namespace {
 
-double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-constexpr int kMaxHull = 2 * kMaxManifoldPoints + 4;
-static_assert(kMaxHull <= 64, "the edges a point sees are bits of a 64-bit mask");
-
-// Convex hull (counter-clockwise, monotone chain) of a few planar points, in place; returns its
-// size (collinear points dropped; a single point or a segment gives 1 or 2).
-int convexHull(Vec2* points, int n, Vec2* hull) {
-    std::sort(points, points + n,
-              [](const Vec2& p, const Vec2& q) { return p.x() < q.x() || (p.x() == q.x() && p.y() < q.y()); });
-    int k = 0;
-    for (int i = 0; i < n; ++i) {
-        while (k >= 2 && cross2(hull[k - 1] - hull[k - 2], points[i] - hull[k - 2]) <= 0) --k;
-        hull[k++] = points[i];
-    }
-    for (int i = n - 2, lower = k + 1; i >= 0; --i) {
-        while (k >= lower && cross2(hull[k - 1] - hull[k - 2], points[i] - hull[k - 2]) <= 0) --k;
-        hull[k++] = points[i];
-    }
-    return std::max(1, k - 1);
-}
-
-// Inserts `p`, a point outside the convex polygon `hull` (CCW, size ≥ 3), into it in place: the
-// vertices between the edges p sees are dropped and p takes their place. Returns the new size.
-int insertIntoHull(Vec2* hull, int size, const Vec2& p) {
-    bool sees[kMaxHull];
-    int seen = 0;
-    for (int i = 0; i < size; ++i) {
-        const Vec2& a = hull[i];
-        sees[i] = cross2(hull[i + 1 == size ? 0 : i + 1] - a, p - a) < 0;  // edge i runs from vertex i
-        seen += sees[i];
-    }
-    if (seen == 0 || seen == size) return size;  // inside (or a degenerate hull): nothing to insert
-    Vec2 out[kMaxHull];
-    int count = 0;
-    for (int i = 0; i < size; ++i) {
-        const bool before = sees[i == 0 ? size - 1 : i - 1], after = sees[i];
-        if (before && after) continue;  // between two visible edges: now inside
-        out[count++] = hull[i];
-        if (!before && after) out[count++] = p;  // the visible chain starts here
-    }
-    std::copy(out, out + count, hull);
-    return count;
-}
-
-// The same insertion when the caller already knows which edges `p` sees (bit i: edge i, from vertex
-// i, has p strictly on its outer side — the sign insertIntoHull tests): the same output, no cross
-// product.
-int insertIntoHullSeeing(Vec2* hull, int size, const Vec2& p, std::uint64_t sees) {
-    if (sees == 0 || sees == (std::uint64_t{1} << size) - 1) return size;  // inside, or a degenerate hull
-    Vec2 out[kMaxHull];
-    int count = 0;
-    for (int i = 0; i < size; ++i) {
-        const bool before = (sees >> (i == 0 ? size - 1 : i - 1)) & 1, after = (sees >> i) & 1;
-        if (before && after) continue;
-        out[count++] = hull[i];
-        if (!before && after) out[count++] = p;
-    }
-    for (int i = 0; i < count; ++i) hull[i] = out[i];
-    return count;
-}
-
-// Removes list[position] from the list of `count`, keeping the others' order (ties of identity
-// go to the lower index); returns the new count. Kept a loop: GCC turns the shift into a call of
-// memmove, which for the few entries of a contact set cost more than the shift (callgrind: 150
-// instructions of a box face pair's ranking).
-#if defined(__GNUC__) && !defined(__clang__)
-__attribute__((optimize("no-tree-loop-distribute-patterns")))
-#endif
-int removeAt(int* list, int position, int count) {
-    for (int k = position + 1; k < count; ++k) list[k - 1] = list[k];
-    return count - 1;
-}
-
-double hullArea(const Vec2* hull, int size) {
-    double twice = 0;
-    for (int i = 0; i < size; ++i) twice += cross2(hull[i], hull[i + 1 == size ? 0 : i + 1]);
-    return 0.5 * twice;
-}
-
-// Whether `p` lies inside the convex polygon `hull` (CCW), within `slack` (a length).
-bool contains(const Vec2* hull, int size, const Vec2& p, double slack) {
-    if (size < 3) return false;
-    for (int i = 0; i < size; ++i) {
-        const Vec2& a = hull[i];
-        const Vec2 edge = hull[i + 1 == size ? 0 : i + 1] - a;
-        const double side = cross2(edge, p - a);
-        // With slack ≥ 0 a point on the inner side passes whatever the edge's length: no root taken.
-        if (side >= 0 && slack >= 0) continue;
-        if (side < -slack * edge.norm()) return false;
-    }
-    return true;
-}
-
-// Whether the centroid rule leaves the kept points as they are for the common reason: with a
-// tolerance ≥ 0, one or two centroids each on the inner side of every kept edge pass each of
-// applyCentroidRule's tests (every edge `continue`s). One pass over the edges makes the same
-// cross products, each edge's difference once for both centroids; false: the full tests decide.
-// Callgrind, an octagon kept to 6 points with two centroids: the rule's 300 instructions a
-// query -> ≈ 200. Each caller makes this test before applyCentroidRule (before the rule's frame,
-// and before the convex-cycle ranking lists its free points), so the rule does not repeat it.
-bool centroidsInsideKeptHull(const RankingRule& rule, const Vec2* hull, int keptSize) {
-    const int centroids = std::min(rule.centroidCount, 4);
-    if (centroids < 1 || centroids > 2 || keptSize < 3 || !(rule.tolerance >= 0)) return false;
-    // The two centroids' x and y side by side: each lane computes cross2(edge, centroid − a) as
-    // edge.x·(centroid − a).y − edge.y·(centroid − a).x, the same IEEE operations in the same order.
-    const Eigen::Array2d x(rule.centroids[0].x(), rule.centroids[centroids - 1].x());
-    const Eigen::Array2d y(rule.centroids[0].y(), rule.centroids[centroids - 1].y());
-    Vec2 a = hull[keptSize - 1];
-    bool inside = true;
-    for (int e = 0; e < keptSize; ++e) {  // the kept edge from vertex e − 1 to vertex e
-        const Vec2 b = hull[e];
-        const Vec2 edge = b - a;
-        const Eigen::Array2d side = edge.x() * (y - a.y()) - edge.y() * (x - a.x());
-        inside &= (side >= 0).all();
-        a = b;
-    }
-    return inside;
-}
-
-// The centroid rule: a body whose centroid projects inside the whole contact polygon rests on
-// it; if the kept points leave the centroid outside, that body would tip over an edge the polygon
-// does not have. Then one kept point (never the first) is swapped for the point that brings every
-// such centroid back inside, the swap of largest area. `hull`: the kept hull (CCW, keptSize
-// vertices; overwritten), `free`: the points not kept, ascending. Returns wanted. Called where
-// centroidsInsideKeptHull did not settle it.
-int applyCentroidRule(const RankPoint* points, int count, const RankingRule& rule, int wanted, int* chosen,
-                      std::array<Vec2, kMaxHull>& hull, int keptSize, const int* free, int freeCount) {
-    const int centroids = std::min(rule.centroidCount, 4);
-    std::array<Vec2, kMaxHull> scratch;
-    // A centroid needs the rule only if it is outside the kept hull and a free point lies beyond a
-    // kept edge it is outside of (else that edge's line separates it from every point: it is
-    // outside the whole polygon too) — two cheap tests before the whole polygon is built.
-    bool restore = false;
-    for (int c = 0; c < centroids && !restore; ++c) {
-        const Vec2& centroid = rule.centroids[c];
-        if (keptSize < 3) {
-            restore = true;
-            break;
-        }
-        for (int e = 0; e < keptSize && !restore; ++e) {
-            const Vec2& a = hull[e];
-            const Vec2 edge = hull[e + 1 == keptSize ? 0 : e + 1] - a;
-            // Inside this edge: on its inner side (no root needed where the tolerance is ≥ 0), or
-            // outside by no more than the tolerance.
-            const double side = cross2(edge, centroid - a);
-            if ((side >= 0 && rule.tolerance >= 0) || !(side < -rule.tolerance * edge.norm())) continue;
-            for (int k = 0; k < freeCount && !restore; ++k) restore = cross2(edge, points[free[k]].planar - a) < 0;
-            if (!restore) break;  // separated from every point by this edge's line
-        }
-    }
-    if (!restore) return wanted;
-    // The whole polygon: the kept hull grown by every free point (no sort).
-    std::array<Vec2, kMaxHull> whole;
-    int wholeSize = keptSize;
-    std::copy(hull.begin(), hull.begin() + keptSize, whole.begin());
-    if (wholeSize >= 3) {
-        for (int k = 0; k < freeCount; ++k) wholeSize = insertIntoHull(whole.data(), wholeSize, points[free[k]].planar);
-    } else {
-        for (int i = 0; i < count; ++i) scratch[i] = points[i].planar;
-        wholeSize = convexHull(scratch.data(), count, whole.data());
-    }
-    // Every centroid inside the whole polygon (by more than rounding) must be inside the kept set.
-    bool required[4] = {false, false, false, false};
-    bool any = false;
-    for (int c = 0; c < centroids; ++c) {
-        required[c] = contains(whole.data(), wholeSize, rule.centroids[c], -rule.tolerance);
-        any |= required[c] && !contains(hull.data(), keptSize, rule.centroids[c], rule.tolerance);
-    }
-    if (!any) return wanted;
-    int bestSlot = -1, bestPoint = -1;
-    double bestArea = -1;
-    for (int slot = 1; slot < wanted; ++slot)
-        for (int k = 0; k < freeCount; ++k) {
-            const int i = free[k];
-            for (int s = 0; s < wanted; ++s) scratch[s] = s == slot ? points[i].planar : points[chosen[s]].planar;
-            const int size = convexHull(scratch.data(), wanted, hull.data());
-            bool holds = true;
-            for (int c = 0; c < centroids && holds; ++c)
-                holds = !required[c] || contains(hull.data(), size, rule.centroids[c], rule.tolerance);
-            if (!holds) continue;
-            const double area = hullArea(hull.data(), size);
-            if (area > bestArea) bestArea = area, bestSlot = slot, bestPoint = i;
-        }
-    if (bestSlot >= 0) chosen[bestSlot] = bestPoint;
-    return wanted;
-}
-
-
-// Where one value alone reaches a pick's band, that value is the largest and every other is
-// below the band: the pick is that point, without a pass over the candidates' identities.
-// `Leader` follows the largest value and the largest of the others as the values are made
-// (NaN, which reaches no band, is passed over); the band is the one pickAtLeast is given.
-// Callgrind, two boxes' octagon (tilted, so one deepest point, one farthest): the first two
-// picks, 15 visits of pickAtLeast a ranking, become one test each.
-struct Leader {
-    double top = -INFINITY, runnerUp = -INFINITY;
-    int index = -1;
-    void see(int k, double v) {
-        if (v > top) runnerUp = top, top = v, index = k;
-        else if (v > runnerUp) runnerUp = v;
-    }
-    bool alone(double band) const { return index >= 0 && top >= band && !(runnerUp >= band); }
-};
-
 // The greedy ranking of rankContacts for points certified a strictly convex cycle
 // (isStrictlyConvexCycle: the clip of two faces) with no given prefix and at least one slot that
 // reads the kept hull's gains. Each point is a vertex of the polygon, so it sees exactly one edge
@@ -224,8 +20,7 @@ struct Leader {
 // between indices, the free points a bit set (ascending, as the general path's list). Returns -1
 // where a slot finds no area to gain (a sliver: the spread rule), and the general path ranks.
 // `deepestLeader`: the depths' leader, seen in index order (the entries take it in a pass they
-// make anyway). Inlined into both entries: its call and frame cost the lifted points' ranking ≈ 37
-// instructions a query (callgrind, two boxes' octagon through the adapter).
+// make anyway). Inlined into both entries: a call and frame per ranked query otherwise.
 [[gnu::always_inline]] inline int rankConvexCycle(const RankPoint* points, int count, const RankingRule& rule, int wanted,
                                                   const Leader& deepestLeader, int* chosen) {
     const double keep = 1 - rule.hysteresis;
@@ -300,8 +95,8 @@ struct Leader {
     next[c0] = c1, next[c1] = c2, next[c2] = c0;
     // The first slot's gains are made here, and with them their leader: its top is the slot's
     // best gain (the maximum of finite positive values — the certificate makes each twiceArea
-    // < 0 — in any order), and a gain alone in the band is the pick (callgrind: the first slot's
-    // max pass and, where one gain leads, its pick pass saved, ≈ 25 instructions a query).
+    // < 0 — in any order), and a gain alone in the band is the pick (no max pass, and where one
+    // gain leads no pick pass, of the first slot's own).
     Leader firstSlot;
     auto arc = [&](int from, int begin, int end, int to) {  // the points begin..end-1 lie between from and to
         for (int k = begin; k < end; ++k) {
@@ -418,8 +213,7 @@ bool isStrictlyConvexCycle(const RankPoint* points, int count) {
 int rankContacts(const RankPoint* points, int count, const RankingRule& rule, int* chosen) {
     if (rule.fixedCount == 0 && count <= 4 && count <= rule.maxCount) return rankAllOfFew(points, count, rule, chosen);
     // A convex polygon's vertices in cyclic order (the clip of two faces), where a slot reads the
-    // kept hull's gains. Callgrind: 8 points to a budget of 4 (one such slot) 7421 -> 7330
-    // instructions a box–box query, to a budget of 8 (four) 8883 -> 7532.
+    // kept hull's gains.
     if (cycleRankingPays(count, rule) && isStrictlyConvexCycle(points, count)) {
         Leader deepest;
         for (int k = 0; k < count; ++k) deepest.see(k, points[k].depth);
@@ -598,8 +392,7 @@ int rankContacts(const LiftedPoints& points, const RankingRule& rule, int* chose
         return rankContacts(ranked, count, rule, chosen);
     }
     // The certificate taken in the pass that gathers the points (rankContacts(RankPoint*)'s
-    // dispatch otherwise): callgrind, two boxes' octagon through the adapter, the gathering and
-    // the certificate 475 -> 408 instructions a query.
+    // dispatch otherwise): one pass over the points instead of two.
     Leader deepest;  // the deepest point's leader too
     const Vec2 p0 = gather(0);
     deepest.see(0, ranked[0].depth);

@@ -176,8 +176,7 @@ void castWitnesses(const RayCastResult& cast, const MinkowskiDifference& differe
 // symmetric pose, and the one that finds edge–edge contacts). Along a face axis n the boxes overlap
 // by h_C(n) − |n·(p_B − p_A)| in the nearer direction and by more in the other: the least of these
 // over the six face axes bounds every face normal's overlap from below. tests/box_box_test.cpp
-// checks it bit for bit against the version of growth_distance.cpp it replaced
-// (tests/box_growth_reference.hpp).
+// checks both against the 15 axes evaluated directly.
 BoxGrowth boxGrowth(const Vec3& halfA, const Vec3& halfB, const Mat3& rotationB, const Vec3& centreOffset,
                     double separation, double size) {
     BoxGrowth result;
@@ -197,8 +196,7 @@ BoxGrowth boxGrowth(const Vec3& halfA, const Vec3& halfB, const Mat3& rotationB,
     // whatever its guards (a parallel edge pair, a ray along the slab) would say — they only ever
     // drop a facet, and exit·(1 + 1e-12) ≥ exit·(1 − 1e-12) as exit ≥ 0 — so that test comes first
     // and most facets pay neither |m|² nor the guards (a NaN fails it and takes the guards' path,
-    // as before). Every number compared is the one compared before, in the same order: the same
-    // exit, ties and normal (tests/box_box_test.cpp, against tests/box_growth_reference.hpp).
+    // as the guards decide).
     auto consider = [&](double along, double supportValue, auto&& lengthSquared, auto&& normal) {
         const double a = std::abs(along);
         const double distance = supportValue * exitAlong, exit = exitSupport * a;  // both scaled by a·exitAlong

@@ -71,8 +71,7 @@ FaceCheck checkFaceExit(const MinkowskiDifference& pair, int face, bool ofA, con
 
 // min over the points of n·p and the first point of that value, as scalar code with Eigen's order
 // of operations ((n₀p₀ + n₁p₁) + n₂p₂, as n.dot(p)), so the same bits: the face loops below are the
-// enumeration's largest part (callgrind, the 8-vertex hull pair), and Eigen spends packet shuffles
-// on 3-vectors.
+// enumeration's largest part, and Eigen spends packet shuffles on 3-vectors.
 struct Lowest {
     double value;
     int index;
@@ -213,8 +212,7 @@ GrowthDistance hullGrowth(const MinkowskiDifference& pair, HullGaugeCarry* carry
     // its centroid is), so its ratio is at most along/(r_A + r_B). The face of largest reach is
     // evaluated first; every face whose bound stays clearly (1e-9) below its ratio — below the
     // final σ's, then, and outside the tie margin — cannot be the exit nor join a tie, and is skipped
-    // below without its support loop (the sides of a resting pair: callgrind, 8-vertex hull pair,
-    // the loops were 0.66 k of the enumeration's 3 k). The others run in the same order as before.
+    // below without its support loop (the sides of a resting pair). The others run in order.
     int firstFace = -1;
     bool firstOfA = true;
     double firstAlong = 0, threshold = 0;

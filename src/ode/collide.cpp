@@ -437,9 +437,9 @@ int maxContactsOf(int flags, const Settings& settings) {
 }
 
 // Inline, as the guard around it and its one caller's lambda (collideGuarded): one frame for the
-// whole call. Apart, the call between them and its eight arguments (two on the stack) were
-// ~25 instructions of every call; GCC left the lambda a function of its own once this was inlined
-// into it, hence the attributes there too (callgrind, box_box/separated: 906 -> 878).
+// whole call, where a call with eight arguments (two on the stack) would cost every pair; GCC
+// left the lambda a function of its own once this was inlined into it, hence the attributes
+// there too.
 [[gnu::always_inline]] inline int collideChecked(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip,
                                                  const Settings& settings, detail::ThreadCache& cache,
                                                  const CacheSource& pairCache) {

@@ -3,8 +3,8 @@
 // so the registry learns of a destroyed geom through ODE's free handler (free_hook).
 //
 // A std::unordered_map under a std::shared_mutex, with a per-thread memo in front for collide():
-// the lock alone (glibc's rwlock) and the map's probe cost ~100 instructions a lookup, 3 % of a
-// spaceCollide step under callgrind (docs/ode.md, "The hull registry"); the memo answers
+// the lock and the map's probe are a measurable part of a spaceCollide step (docs/ode.md, "The
+// hull registry"); the memo answers
 // a geom seen before in ~10, with no lock and no shared write, while no hull has been forgotten
 // since. It replaced a lock-free index with hazard pointers (~250 lines).
 #pragma once

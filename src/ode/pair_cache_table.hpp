@@ -91,8 +91,8 @@ private:
     void erase(const std::vector<Entry*>& doomed);
     std::size_t home(const void* first, const void* second) const;
 
-    // The lease: a flag, not a mutex — a plain collide() only ever tries it (and a try of an
-    // uncontended std::mutex and its unlock cost ~60 instructions, a tenth of a repeated answer).
+    // The lease: a flag, not a mutex — a plain collide() only ever tries it (a try of an
+    // uncontended std::mutex and its unlock is a measurable part of a repeated answer).
     std::atomic<bool> held_{false};
     // For the rare calls that must wait (clear, setCapacity, stats): false when this thread holds
     // the lease already (inside a spaceCollide handler), which then needs no taking.

@@ -51,7 +51,7 @@ struct ThreadCache {
     struct PlaneSlot {
         double raw[4] = {NAN, NAN, NAN, NAN};  // a, b, c, d; NaN: never equal, so an empty slot never hits
         // (a, b, c) normalised and d: the HalfSpace the core is given. As the core takes them, so
-        // that a query is handed these by reference (copies of them were ~12 instructions a call).
+        // that a query is handed these by reference, not copied per call.
         HalfSpace halfSpace{Vec3::Zero(), 0.0};
         // The core's own normalisation of that half-space (normaliseHalfSpace, half_space.hpp),
         // made once per plane instead of per call; false where it refuses the plane (then every
@@ -66,8 +66,7 @@ struct ThreadCache {
     // What this thread remembers of a convex geom (by address), both looked up by one search of
     // its set (geomMemo): before, two direct-mapped tables of 256 entries each took a hash and a
     // compare per geom, and two geoms whose addresses hashed alike evicted each other's entries on
-    // every call — about 10 % of the benchmark's convex calls missed and paid the two support
-    // queries again (callgrind, issue 23). Four-way set-associative, the least recently used
+    // every call, paying the two support queries again. Four-way set-associative, the least recently used
     // evicted: the same 256 entries, and five geoms must share a set before one misses.
     struct GeomMemo {
         const void* geom = nullptr;
@@ -102,9 +101,8 @@ struct ThreadCache {
     Settings settings;
 
     // The Gauss-map tolerance (cosine, sine) of the last Settings::angularTolerance a hull–plane
-    // query used, kept while the radians stay the same to the bit (angularToleranceOf): its series
-    // cost every such query ~45 instructions (callgrind, issue 23). It starts as the tolerance of
-    // 0.0 rad, whose bits are 0.
+    // query used, kept while the radians stay the same (angularToleranceOf): its cosine and sine
+    // are not recomputed per query. It starts as the tolerance of 0.0 rad, whose bits are 0.
     std::uint64_t angularToleranceBits = 0;
     gdc::detail::AngularTolerance angularTolerance{0.0};
 

@@ -1,6 +1,6 @@
 // The core's manifold written as ODE's dContactGeoms: the last step of every gdc::ode::collide
-// call (collide.cpp), apart so that tests/ode/adapter_equality_test.cpp can hold it against the
-// former version (tests/ode/write_contacts_reference.hpp) on every kind of manifold.
+// call (collide.cpp), apart so that tests/ode/adapter_equality_test.cpp can hold it against ODE's
+// convention, written plainly, on every kind of manifold.
 #pragma once
 
 #include <gdcontact/manifold.hpp>
@@ -126,8 +126,7 @@ inline int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair,
     // Every contact's fields as they lie in a dContactGeom, those all share made once: pos and
     // normal each as two pairs of doubles (the fourth is ODE's padding, 0), g1 and g2 as one pair,
     // in registers (GCC's and Clang's vector types: an array went through the stack). Stored in
-    // pairs, a contact is seven stores instead of fourteen (callgrind: the field-by-field write
-    // was 26 instructions a contact).
+    // pairs, a contact is seven stores instead of fourteen.
     using write_contacts_detail::DoublePair;
     using write_contacts_detail::WordPair;
     const DoublePair normalXY = {normal.x(), normal.y()}, normalZ0 = {normal.z(), 0.0};

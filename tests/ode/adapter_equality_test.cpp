@@ -14,7 +14,6 @@
 
 #include "ode/write_contacts.hpp"  // src/: the adapter's write of a manifold
 #include "ode_support.hpp"
-#include "write_contacts_reference.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -342,16 +341,20 @@ TEST_CASE("adapter: a hull on a plane follows each install()'s angular tolerance
 
 namespace {
 
-// ---- writeContacts against its former version (tests/ode/write_contacts_reference.hpp) ----
+// ---- writeContacts against ODE's convention, written plainly ----
 //
-// The write of a manifold as dContactGeoms (src/ode/write_contacts.hpp) was made cheaper (pointers
-// instead of indices, the finiteness test chosen once per manifold, the fields stored in pairs);
-// here both versions write every manifold of 10^5 random poses of each pair type into arrays
-// filled alike with random bytes, and must leave the arrays identical byte for byte and return the
-// same count. Each call's other inputs are drawn too: either order of the pair, the contact limit,
-// the stride (dContactGeom or dContact), DeepestLast or DeepestFirst, a core answer or a carried
-// one (then some positions not finite); the points shuffled in half the calls (the adapter's
-// queries return lift order where depths differ), and some depths made equal, negative, −0 or 0.
+// The write of a manifold as dContactGeoms (src/ode/write_contacts.hpp) against the convention it
+// documents, spelled out with a stable sort: the points at least touching (depth ≥ −1e-9 of the
+// pair's size) with a finite position, deepest first with equal depths in the core's order, the
+// touching tail dropped where a point overlaps, the first maxContacts of them, reversed for
+// DeepestFirst; the normal from o2 into o1 made unit (refused with no contact where it is off unit
+// by more than 1e-6), the depth clamped at 0, g1 = o1, g2 = o2, sides −1. Every manifold of 10^5
+// random poses of each pair type is written into arrays filled alike with random bytes: the slots
+// past the count and the bytes between contacts at a dContact stride must stay as they were. Each
+// call's other inputs are drawn too: either order of the pair, the contact limit, the stride
+// (dContactGeom or dContact), DeepestLast or DeepestFirst, a core answer or a carried one (then
+// some positions not finite); the points shuffled in half the calls, and some depths made equal,
+// negative, −0 or 0.
 
 struct WriteComparison {
     long long calls = 0, contacts = 0, mismatches = 0, invalidNormals = 0;
@@ -397,12 +400,53 @@ void compareWrites(Manifold manifold, double sizeOfPair, std::mt19937_64& random
     std::vector<unsigned char> got = before, want = before;
     const int gotCount = gdc::ode::detail::writeContacts(manifold, flip, sizeOfPair, maxContacts, order, o1, o2,
                                                          reinterpret_cast<dContactGeom*>(got.data()), skip, checkedFinite);
-    const int wantCount = gdc::ode::reference::writeContacts(manifold, flip, sizeOfPair, maxContacts, order, o1, o2,
-                                                             reinterpret_cast<dContactGeom*>(want.data()), skip,
-                                                             checkedFinite);
+    // The convention, plainly.
+    Vec3 normal = flip ? manifold.normal : Vec3(-manifold.normal);
+    int wantCount = 0;
+    if (std::isfinite(normal.norm()) && std::abs(normal.norm() - 1.0) <= 1e-6) {
+        normal /= normal.norm();
+        std::vector<const ContactPoint*> kept;
+        for (int i = 0; i < manifold.pointCount; ++i) {
+            const ContactPoint& point = manifold.points[static_cast<std::size_t>(i)];
+            if (point.depth >= -1e-9 * sizeOfPair && point.position.allFinite()) kept.push_back(&point);
+        }
+        std::stable_sort(kept.begin(), kept.end(), [](const ContactPoint* x, const ContactPoint* y) { return x->depth > y->depth; });
+        if (!kept.empty() && kept.front()->depth > 0)
+            while (!(kept.back()->depth > 0)) kept.pop_back();
+        if (static_cast<int>(kept.size()) > maxContacts) kept.resize(static_cast<std::size_t>(maxContacts));
+        if (order == ContactOrder::DeepestFirst) std::reverse(kept.begin(), kept.end());
+        wantCount = static_cast<int>(kept.size());
+        for (int i = 0; i < wantCount; ++i) {
+            dContactGeom geom;
+            const ContactPoint& point = *kept[static_cast<std::size_t>(i)];
+            for (int k = 0; k < 3; ++k) geom.pos[k] = point.position[k], geom.normal[k] = normal[k];
+            geom.pos[3] = geom.normal[3] = 0;
+            geom.depth = std::max(point.depth, 0.0);
+            geom.g1 = o1;
+            geom.g2 = o2;
+            geom.side1 = geom.side2 = -1;
+            std::memcpy(want.data() + static_cast<std::ptrdiff_t>(i) * skip, &geom, sizeof geom);
+        }
+    }
     ++result.calls;
     result.contacts += wantCount;
-    if (gotCount != wantCount || got != want) ++result.mismatches;
+    // Normals may differ in the last bit (the division by the length, or none where it is 1).
+    bool same = gotCount == wantCount;
+    for (int i = 0; same && i < gotCount; ++i) {
+        dContactGeom a, b;
+        std::memcpy(&a, got.data() + static_cast<std::ptrdiff_t>(i) * skip, sizeof a);
+        std::memcpy(&b, want.data() + static_cast<std::ptrdiff_t>(i) * skip, sizeof b);
+        for (int k = 0; k < 3; ++k) same = same && std::abs(a.normal[k] - b.normal[k]) <= 1e-15;
+        std::memcpy(a.normal, b.normal, sizeof a.normal);
+        same = same && std::memcmp(&a, &b, sizeof a) == 0;
+    }
+    // Beyond each contact (at a dContact stride) and past the count: untouched.
+    for (std::size_t byte = 0; same && byte < got.size(); ++byte) {
+        const std::size_t slot = byte / static_cast<std::size_t>(skip), within = byte % static_cast<std::size_t>(skip);
+        if (slot < static_cast<std::size_t>(gotCount) && within < sizeof(dContactGeom)) continue;
+        same = got[byte] == before[byte];
+    }
+    if (!same) ++result.mismatches;
     for (int i = 0; i < std::min(gotCount, wantCount); ++i) {
         dContactGeom a, b;
         std::memcpy(&a, got.data() + static_cast<std::ptrdiff_t>(i) * skip, sizeof a);
@@ -416,7 +460,7 @@ void compareWrites(Manifold manifold, double sizeOfPair, std::mt19937_64& random
 
 }  // namespace
 
-TEST_CASE("adapter: writeContacts equals its former version byte for byte on 1e5 manifolds of every pair type",
+TEST_CASE("adapter: writeContacts follows ODE's convention on 1e5 manifolds of every pair type",
           "[ode][equality]") {
     OdeSession session(false);
     dMessageFunction* previous = dGetMessageHandler();
@@ -482,14 +526,14 @@ TEST_CASE("adapter: writeContacts equals its former version byte for byte on 1e5
             if (answer.first.empty()) continue;  // the adapter writes nothing then
             compareWrites(answer.first, answer.second, random, result);
         }
-        std::printf("writeContacts = reference, %s: %lld manifolds, %.2f contacts per call, %lld refused normals, "
+        std::printf("writeContacts vs the convention, %s: %lld manifolds, %.2f contacts per call, %lld refused normals, "
                     "%lld mismatches, largest difference %g\n",
                     type.name, result.calls, static_cast<double>(result.contacts) / static_cast<double>(result.calls),
                     result.invalidNormals, result.mismatches, result.largest);
         CHECK(result.calls == kPosesPerType);
         CHECK(result.contacts > result.calls / 2);  // the comparison has contacts to compare
         CHECK(result.mismatches == 0);
-        CHECK(result.largest == 0.0);
+        CHECK(result.largest <= 1e-15);
     }
     dSetMessageHandler(previous);
 }

@@ -5,8 +5,7 @@
 // hull's general answer (Polytope::supportVertex, selectFeature, featureVertices).
 #pragma once
 
-#include "contact/feature_intersection.hpp"
-#include "contact/gauss_map.hpp"
+#include "shapes/feature.hpp"
 
 #include <gdcontact/polytope.hpp>
 

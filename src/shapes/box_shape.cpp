@@ -1,5 +1,5 @@
 // The box's shape hooks (box_shape.hpp).
-#include "geometry/box_shape.hpp"
+#include "shapes/box_shape.hpp"
 
 namespace gdc::detail {
 namespace {
