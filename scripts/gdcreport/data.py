@@ -6,14 +6,17 @@ import json
 import os
 
 
-# The marker lines (begin, end) of the sections of docs/benchmarks.md that commands of their own
-# write (big.py, solver_seeds.py) and bench.py keeps. A begin marker is matched up to ": begin",
-# so a page whose marker names an older writer is still spliced in place.
+# The marker lines (begin, end) of the sections of docs/benchmarks.md that bench.py keeps when it
+# rewrites the page: those that commands of their own write (big.py, solver_seeds.py) and the one
+# kept by hand (the contact set's tables over seeds, each naming its command). A begin marker is
+# matched up to ": begin", so a page whose marker names an older writer is still spliced in place.
 BIG_WORLDS = ("<!-- big-worlds: begin (written by scripts/bench --big, python3 -m gdcreport big) -->",
               "<!-- big-worlds: end -->")
 SOLVER_SEEDS = ("<!-- solver-seeds: begin (written by scripts/solver_seeds, python3 -m gdcreport solver-seeds) -->",
                 "<!-- solver-seeds: end -->")
-GENERATED_SECTIONS = [BIG_WORLDS, SOLVER_SEEDS]
+CONTACT_SET = ("<!-- contact-set: begin (kept by hand: scripts/bench keeps this block; each table names its command) -->",
+               "<!-- contact-set: end -->")
+KEPT_SECTIONS = [BIG_WORLDS, SOLVER_SEEDS, CONTACT_SET]
 
 
 def results_and_docs_arguments(description, argv=None):

@@ -103,6 +103,19 @@ class Splice(unittest.TestCase):
         self.assertEqual(data.read_key_values(self.path + ".absent"), {})
 
 
+class KeptSections(unittest.TestCase):
+    def test_every_marked_block_of_the_benchmarks_page_is_kept(self):
+        """scripts/bench rewrites docs/benchmarks.md and keeps only data.KEPT_SECTIONS: a marked
+        block of the committed page that is not among them would be lost by the next run."""
+        with open(os.path.join(REPO, "docs", "benchmarks.md")) as f:
+            page = f.read()
+        begins = [line for line in page.splitlines() if line.startswith("<!-- ") and ": begin" in line]
+        self.assertGreaterEqual(len(begins), 3)
+        kept = [data.marked_block(page, begin, end) for begin, end in data.KEPT_SECTIONS]
+        for begin in begins:
+            self.assertTrue(any(block is not None and block.startswith(begin) for block in kept), begin)
+
+
 class Stats(unittest.TestCase):
     def test_sign_test(self):
         self.assertEqual(stats.sign_test(0, 0), 1.0)
