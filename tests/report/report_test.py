@@ -82,7 +82,7 @@ class ReportSummary(unittest.TestCase):
         shutil.rmtree(cls.directory, ignore_errors=True)
 
     def rewrite(self, change):
-        """check_report.py's verdict on the report after change(text) (restored afterwards)."""
+        """The check's verdict on the report after change(text) (restored afterwards)."""
         path = os.path.join(self.directory, "report.md")
         with open(path, "w") as f:
             f.write(change(self.report))
