@@ -10,7 +10,7 @@
 //   SPEC: gdc | ode-box | ode-convex | gdc:NAME=VALUE[,NAME=VALUE...] (a gdc::Settings variant)
 // Writes DIR/solver_seeds_runs.csv (one row per run), DIR/solver_seeds_summary.csv (one row per
 // scene × stepper × contender), DIR/solver_seeds_scenes.csv, DIR/solver_seeds_limits.csv and
-// DIR/solver_seeds_command.txt; scripts/solver_seeds_report.py turns them into tables and a plot.
+// DIR/solver_seeds_command.txt; `python3 -m gdcreport solver-seeds` (scripts/gdcreport) turns them into tables and a plot.
 #include "solver_seeds.hpp"
 
 #include <algorithm>

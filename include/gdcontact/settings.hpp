@@ -90,7 +90,8 @@ struct Settings {
     /// pair. 6 (default) is the fewest that stands wherever 8 and ODE's dBox stand in the solver
     /// benchmark over seeds; 8 keeps a box–box octagon whole; 4 is what Bullet, PhysX and Box3D
     /// keep and suffices under dWorldStep; 1 keeps the deepest point, 2 a segment, 3 a triangle.
-    /// The measurements: docs/algorithm.md, "The budget over every scene".
+    /// Why 6: docs/algorithm.md, "The budget over every scene: why 6"; the tables in
+    /// docs/benchmarks.md, "The budget over every scene".
     /// Bounds [1, 16]: 16 is the size of a Manifold (kMaxManifoldPoints).
     int maxContacts = 6;
 

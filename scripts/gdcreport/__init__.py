@@ -1,11 +1,17 @@
-"""gdcreport: what the report scripts share — numbers as text, Markdown tables, reading the result
-files, matplotlib plots with labels that do not overlap, and animated GIFs.
+"""gdcreport: every report of gdcontact, one package — run as `python3 -m gdcreport COMMAND` with the
+repository's scripts/ on PYTHONPATH (__main__.py lists the commands):
 
-Used by scripts/report.py (results/report.md of scripts/run), scripts/solver_seeds_report.py (the
-"Solver over seeds" section), scripts/check_report.py, scripts/animate.py, bench/report.py
-(docs/benchmarks.md), bench/big_report.py (its "Big worlds" section) and bench/callgrind_counts.py.
+  scenes.py        results/report.md of scripts/run (the paper's scenes)
+  check.py         the check of that report's summary against the runs
+  solver_seeds.py  the "Solver over seeds" section (results/report.md, docs/benchmarks.md)
+  bench.py         docs/benchmarks.md (scripts/bench)
+  big.py           its "Big worlds" section (scripts/bench --big)
+  budget.py        the contact budget tables of docs/algorithm.md (from solver-seeds runs)
+
+and what they share: numbers as text (numbers), statistics — medians, the Wilson interval, the
+exact sign test (stats), Markdown tables (tables), reading the result files and splicing a section
+between marker lines (data), matplotlib plots with labels that do not overlap (plots), and animated
+GIFs (gifs). scripts/animate.py and bench/callgrind_counts.py, which run programs, use it too.
 Plain Python 3 with Debian's python3-matplotlib (plots) and python3-pil (GIFs); each module imports
-only what it needs, so reading and formatting work without either.
-
-A script outside scripts/ finds the package with `sys.path.insert(0, <repo>/scripts)`.
+only what it needs, so reading, formatting and statistics work without either.
 """

@@ -6,13 +6,26 @@ import json
 import os
 
 
-def results_and_docs_arguments(description):
+# The marker lines (begin, end) of the sections of docs/benchmarks.md that bench.py keeps when it
+# rewrites the page: those that commands of their own write (big.py, solver_seeds.py) and the one
+# kept by hand (the contact set's tables over seeds, each naming its command). A begin marker is
+# matched up to ": begin", so a page whose marker names an older writer is still spliced in place.
+BIG_WORLDS = ("<!-- big-worlds: begin (written by scripts/bench --big, python3 -m gdcreport big) -->",
+              "<!-- big-worlds: end -->")
+SOLVER_SEEDS = ("<!-- solver-seeds: begin (written by scripts/solver_seeds, python3 -m gdcreport solver-seeds) -->",
+                "<!-- solver-seeds: end -->")
+CONTACT_SET = ("<!-- contact-set: begin (kept by hand: scripts/bench keeps this block; each table names its command) -->",
+               "<!-- contact-set: end -->")
+KEPT_SECTIONS = [BIG_WORLDS, SOLVER_SEEDS, CONTACT_SET]
+
+
+def results_and_docs_arguments(description, argv=None):
     """The command line of the docs/benchmarks.md generators: --results DIR (the benchmark's
     output) and --docs DIR (where benchmarks.md and images/ go)."""
     parser = argparse.ArgumentParser(description=description)
     parser.add_argument("--results", required=True)
     parser.add_argument("--docs", required=True)
-    return parser.parse_args()
+    return parser.parse_args(argv)
 
 
 def read_csv(path):
@@ -68,9 +81,15 @@ def load_scene_runs(results, with_series=True):
     return runs
 
 
+def _begin_key(begin):
+    """What of a begin marker identifies it: up to ": begin" (the rest names its writer)."""
+    return begin[:begin.index(": begin") + len(": begin")] if ": begin" in begin else begin
+
+
 def marked_block(text, begin, end):
-    """The block from the line starting with `begin` to the `end` marker, both included; None when
-    the text lacks either."""
+    """The block from the line starting with `begin` (matched up to ": begin") to the `end` marker,
+    both included; None when the text lacks either."""
+    begin = _begin_key(begin)
     if begin not in text or end not in text:
         return None
     return text[text.index(begin):text.index(end) + len(end)]
@@ -87,6 +106,6 @@ def splice(doc_path, begin, end, section):
             existing = f.read()
     if marked_block(existing, begin, end) is None:
         return existing.rstrip("\n") + "\n\n" + block
-    before = existing[:existing.index(begin)]
+    before = existing[:existing.index(_begin_key(begin))]
     after = existing[existing.index(end) + len(end):].lstrip("\n")
     return before + block + ("\n" + after if after else "")

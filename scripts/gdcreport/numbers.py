@@ -71,15 +71,6 @@ def fmt_percent(fraction):
     return f"{100 * fraction:.0f} %"
 
 
-def median(values):
-    """The median (the mean of the middle two for an even count); NaN for no values."""
-    ordered = sorted(values)
-    n = len(ordered)
-    if n == 0:
-        return math.nan
-    return ordered[n // 2] if n % 2 else 0.5 * (ordered[n // 2 - 1] + ordered[n // 2])
-
-
 def ratio(numerator, denominator):
     """numerator ÷ denominator; infinite when only the denominator is 0, NaN when both are."""
     if denominator <= 0:

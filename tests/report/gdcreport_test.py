@@ -1,16 +1,16 @@
 #!/usr/bin/env python3
-"""scripts/gdcreport, the package the report scripts share: number formats, Markdown tables, the
+"""scripts/gdcreport, the report package: number formats, statistics, Markdown tables, the
 marker splice, GIF writing, and the label placer, whose labels must not overlap one another, a
 marker, the legend or the axes' edge — on a crowded made-up cluster and on the speed/accuracy
-(Pareto) plot of bench/report.py drawn from a real `bench_tradeoff --quick` output
+(Pareto) plot of gdcreport.bench drawn from a real `bench_tradeoff --quick` output
 (data/tradeoff_quick.csv). Overlap is measured as a reader sees it: the labels' text boxes from
 matplotlib's renderer.
 """
-import importlib.util
 import math
 import os
 import random
 import shutil
+import subprocess
 import sys
 import tempfile
 import unittest
@@ -18,16 +18,9 @@ import unittest
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.join(HERE, "..", "..")
 sys.path.insert(0, os.path.join(REPO, "scripts"))
-from gdcreport import data, numbers, plots, tables  # noqa: E402
+from gdcreport import data, numbers, plots, stats, tables  # noqa: E402
+from gdcreport import bench as bench_report  # noqa: E402
 from gdcreport.plots import plt  # noqa: E402
-
-
-def bench_report():
-    """bench/report.py as a module (its name would clash with scripts/report.py)."""
-    spec = importlib.util.spec_from_file_location("bench_report", os.path.join(REPO, "bench", "report.py"))
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
 
 
 class Numbers(unittest.TestCase):
@@ -56,9 +49,9 @@ class Numbers(unittest.TestCase):
         self.assertEqual(numbers.fmt_percent(0.256), "26 %")
 
     def test_median_ratio_number(self):
-        self.assertEqual(numbers.median([3, 1, 2]), 2)
-        self.assertEqual(numbers.median([4, 1, 2, 3]), 2.5)
-        self.assertTrue(math.isnan(numbers.median([])))
+        self.assertEqual(stats.median([3, 1, 2]), 2)
+        self.assertEqual(stats.median([4, 1, 2, 3]), 2.5)
+        self.assertTrue(math.isnan(stats.median([])))
         self.assertEqual(numbers.ratio(3.0, 2.0), 1.5)
         self.assertEqual(numbers.ratio(1.0, 0.0), math.inf)
         self.assertTrue(math.isnan(numbers.ratio(0.0, 0.0)))
@@ -97,11 +90,82 @@ class Splice(unittest.TestCase):
         self.assertEqual(data.marked_block(second, begin, end), "<!-- x: begin -->\n## X\n\nnew\n<!-- x: end -->")
         self.assertIsNone(data.marked_block("no markers", begin, end))
 
+    def test_a_marker_naming_another_writer_is_replaced_in_place(self):
+        with open(self.path, "w") as f:
+            f.write("# Page\n\n<!-- x: begin (written by old.py) -->\nold\n<!-- x: end -->\n\n## After\n")
+        text = data.splice(self.path, "<!-- x: begin (written by new.py) -->", "<!-- x: end -->", "new")
+        self.assertEqual(text, "# Page\n\n<!-- x: begin (written by new.py) -->\nnew\n<!-- x: end -->\n\n## After\n")
+
     def test_key_values(self):
         with open(self.path, "w") as f:
             f.write("cpu=Some CPU = fast\nnot a pair\ncores=2\n")
         self.assertEqual(data.read_key_values(self.path), {"cpu": "Some CPU = fast", "cores": "2"})
         self.assertEqual(data.read_key_values(self.path + ".absent"), {})
+
+
+class KeptSections(unittest.TestCase):
+    def test_every_marked_block_of_the_benchmarks_page_is_kept(self):
+        """scripts/bench rewrites docs/benchmarks.md and keeps only data.KEPT_SECTIONS: a marked
+        block of the committed page that is not among them would be lost by the next run."""
+        with open(os.path.join(REPO, "docs", "benchmarks.md")) as f:
+            page = f.read()
+        begins = [line for line in page.splitlines() if line.startswith("<!-- ") and ": begin" in line]
+        self.assertGreaterEqual(len(begins), 3)
+        kept = [data.marked_block(page, begin, end) for begin, end in data.KEPT_SECTIONS]
+        for begin in begins:
+            self.assertTrue(any(block is not None and block.startswith(begin) for block in kept), begin)
+
+
+class Stats(unittest.TestCase):
+    def test_sign_test(self):
+        self.assertEqual(stats.sign_test(0, 0), 1.0)
+        self.assertEqual(stats.sign_test(3, 3), 1.0)
+        self.assertAlmostEqual(stats.sign_test(0, 5), 2 / 32)  # both tails of 5 fair coins all alike
+        self.assertAlmostEqual(stats.sign_test(6, 1), 2 * 8 / 128)  # P(k <= 1 of 7) = 8/128, twice
+        self.assertEqual(stats.sign_test(1, 6), stats.sign_test(6, 1))
+
+    def test_wilson(self):
+        self.assertEqual(stats.wilson(0, 0), (0.0, 1.0))
+        low, high = stats.wilson(0, 10)
+        self.assertEqual(low, 0.0)
+        self.assertAlmostEqual(high, 0.2775, places=4)  # z² / (n + z²) for no successes
+        low, high = stats.wilson(5, 10)
+        self.assertAlmostEqual(low + high, 1.0)  # symmetric about one half
+        self.assertLess(low, 0.5)
+
+
+class Commands(unittest.TestCase):
+    """python3 -m gdcreport as the callers run it (scripts/ on PYTHONPATH)."""
+
+    def run_command(self, *arguments):
+        environment = dict(os.environ, PYTHONPATH=os.path.join(REPO, "scripts"))
+        return subprocess.run([sys.executable, "-m", "gdcreport", *arguments], env=environment,
+                              capture_output=True, text=True)
+
+    def test_an_unknown_command_fails_and_lists_the_commands(self):
+        result = self.run_command("no-such-report")
+        self.assertEqual(result.returncode, 2)
+        for command in ("scenes", "check", "solver-seeds", "bench", "big", "budget"):
+            self.assertIn(command, result.stderr)
+
+    def test_budget_pairs_seeds_with_the_sign_test(self):
+        directory = tempfile.mkdtemp(prefix="gdcreport_budget_")
+        self.addCleanup(shutil.rmtree, directory, ignore_errors=True)
+        # Made-up runs of one scene: the variant fails seeds 0-5, the default none of them.
+        with open(os.path.join(directory, "solver_seeds_runs.csv"), "w") as f:
+            f.write("scene,stepper,contender,seed,failed,contacts_per_step,sleep_time,drift\n")
+            for seed in range(10):
+                f.write(f"pile,quick20,gdc,{seed},0,8,1.5,0.001\n")
+                f.write(f"pile,quick20,gdc:maxContacts=4,{seed},{int(seed < 6)},4,-1,0.002\n")
+        with open(os.path.join(directory, "solver_seeds_summary.csv"), "w") as f:
+            f.write("scene,stepper,contender,best_ode,cost_whole_ms\n")
+            f.write("pile,quick20,gdc,,2.0\npile,quick20,gdc:maxContacts=4,,1.0\n")
+        result = self.run_command("budget", directory, "--contenders", "gdc,gdc:maxContacts=4")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        rows = [line for line in result.stdout.splitlines() if line.startswith("| pile | QuickStep 20 | `gdc:")]
+        self.assertEqual(len(rows), 1)  # the paired row: 6 seeds only the variant fails, none the other
+        self.assertEqual(rows[0].split("|")[5:9], [" 10 ", " 6 ", " 0 ", f" {stats.sign_test(6, 0):.2g} "])
+        self.assertIn("6/10 [", result.stdout)
 
 
 class Gifs(unittest.TestCase):
@@ -164,7 +228,7 @@ class Labels(unittest.TestCase):
 
     def test_pareto_plot_labels_are_readable(self):
         rows = data.read_csv(os.path.join(HERE, "data", "tradeoff_quick.csv"))
-        figure, labelled, unplaced = bench_report().pareto_figure(rows)
+        figure, labelled, unplaced = bench_report.pareto_figure(rows)
         self.assertEqual(unplaced, [])
         for ax, annotations, points in labelled:
             self.assertGreater(len(annotations), 5)

@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
-"""scripts/report.py and scripts/check_report.py on made-up runs of the four scenes.
+"""The scenes report and its check (python3 -m gdcreport scenes / check) on made-up runs of the four scenes.
 
 The runs are written in the formats the scene programs write (--summary JSON, --csv), with
 verdicts chosen so that every method passes some and fails some; the report's summary must then
-have one line per scene run, the right verdict per method, and check_report.py must accept it —
+have one line per scene run, the right verdict per method, and the check must accept it —
 and reject the same report with a line dropped, a line repeated or a verdict flipped.
 """
 import json
@@ -17,7 +17,7 @@ import unittest
 
 SCRIPTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts")
 sys.path.insert(0, SCRIPTS)
-import check_report  # noqa: E402
+from gdcreport import check as check_report  # noqa: E402
 
 METHODS = ["gdc", "tracking", "ode"]
 # (scene, boxes, {method: success}): every method fails somewhere, two scenes with both shapes.
@@ -71,7 +71,9 @@ class ReportSummary(unittest.TestCase):
             for method in METHODS:
                 write_run(cls.directory, scene, method, boxes, verdicts[method], seed)
                 seed += 1
-        subprocess.run([sys.executable, os.path.join(SCRIPTS, "report.py"), cls.directory], check=True)
+        # As scripts/run runs it: the package as a command, scripts/ on PYTHONPATH.
+        environment = dict(os.environ, PYTHONPATH=SCRIPTS)
+        subprocess.run([sys.executable, "-m", "gdcreport", "scenes", cls.directory], check=True, env=environment)
         with open(os.path.join(cls.directory, "report.md")) as f:
             cls.report = f.read()
 
@@ -80,7 +82,7 @@ class ReportSummary(unittest.TestCase):
         shutil.rmtree(cls.directory, ignore_errors=True)
 
     def rewrite(self, change):
-        """check_report.py's verdict on the report after change(text) (restored afterwards)."""
+        """The check's verdict on the report after change(text) (restored afterwards)."""
         path = os.path.join(self.directory, "report.md")
         with open(path, "w") as f:
             f.write(change(self.report))

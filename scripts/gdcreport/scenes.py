@@ -1,19 +1,18 @@
-#!/usr/bin/env python3
 """Writes results/report.md and its PNG plots from the scene runs of scripts/run.
 
 Input, in the results directory: for every run SCENE_METHOD_BOXES.json (the summary a scene
 program writes with --summary) and .csv (its per-step measures, --csv); manifold_demo.txt and
 ode_stack.txt when present; SCENE_animation.gif from scripts/animate.py, or animations.txt saying
 why there are none. Plots use matplotlib (Debian's python3-matplotlib); numbers, tables, reading the runs and saving
-the plots come from scripts/gdcreport, shared with the other report scripts.
+the plots come from the rest of this package (gdcreport), shared with the other reports.
 
 The report answers first: a summary with one line per scene run (scene and box shape), each
 method's PASS/FAIL from the scene's own check and what gdcontact costs per step against ODE's
 native colliders; then per scene a compact table of numbers (sentences go in the notes under it),
-its plot and animation; the full tables of every measure come last. scripts/check_report.py
-checks the summary against the runs.
+its plot and animation; the full tables of every measure come last. `python3 -m gdcreport check`
+(check.py) checks the summary against the runs.
 
-Usage: scripts/report.py RESULTS_DIR [--build BUILD_DIR] [--seconds N]
+Usage: python3 -m gdcreport scenes RESULTS_DIR [--build BUILD_DIR] [--seconds N]
 """
 import argparse
 import math
@@ -418,12 +417,12 @@ def scene_section(runs, results, scene, heading, setup, columns, extra=None, plo
     return out
 
 
-def main():
+def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("results")
     parser.add_argument("--build", default="build")
     parser.add_argument("--seconds", type=float, default=None, help="wall time of the runs, for the report")
-    arguments = parser.parse_args()
+    arguments = parser.parse_args(argv)
     results = arguments.results
     runs = data.load_scene_runs(results)
     if not runs:
@@ -560,6 +559,3 @@ def main():
     with open(os.path.join(results, "report.md"), "w") as f:
         f.write("\n".join(out))
 
-
-if __name__ == "__main__":
-    main()

@@ -1,22 +1,20 @@
-#!/usr/bin/env python3
 """Checks the summary at the top of results/report.md against the runs it summarises.
 
 The summary must have exactly one line per scene run (scene and box shape, as found in the
 SCENE_METHOD_BOXES.json files), every scene of --scenes among them, a column per method, and in
 each cell the verdict that method's run gave (PASS/FAIL, its "success"). Reads the Markdown table
-as a reader would, so it fails when report.py drops, repeats or mislabels a line. Exit status 1
+as a reader would, so it fails when the scenes report drops, repeats or mislabels a line. Exit status 1
 with the reasons on stderr; scripts/run and CTest (tests/report) run it.
 
-Usage: scripts/check_report.py RESULTS_DIR [--scenes box_drop,tower,brick_wall,composites]
+Usage: python3 -m gdcreport check RESULTS_DIR [--scenes box_drop,tower,brick_wall,composites]
 """
 import argparse
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from gdcreport import data  # noqa: E402
-from gdcreport.tables import parse_table  # noqa: E402
-from report import BOXES_LABEL, METHOD_LABEL, SCENE_TITLE, SCENES, SUMMARY_HEADING  # noqa: E402
+from gdcreport import data
+from gdcreport.scenes import BOXES_LABEL, METHOD_LABEL, SCENE_TITLE, SCENES, SUMMARY_HEADING
+from gdcreport.tables import parse_table
 
 
 def summary_table(report_text):
@@ -87,11 +85,11 @@ def check(results, scenes):
     return problems
 
 
-def main():
+def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("results")
     parser.add_argument("--scenes", default=",".join(SCENES), help="scenes that must be in the summary (comma list)")
-    arguments = parser.parse_args()
+    arguments = parser.parse_args(argv)
     scenes = [s for s in arguments.scenes.split(",") if s]
     problems = check(arguments.results, scenes)
     if problems:
@@ -100,6 +98,3 @@ def main():
     print(f"report summary check: one line per scene run, one verdict per method, matching the runs "
           f"({arguments.results}/report.md)")
 
-
-if __name__ == "__main__":
-    main()

@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """The contact budget (Settings::maxContacts) against the default and ODE's options, from the solver
 benchmark over seeds: the tables of docs/algorithm.md ("The budget over every scene").
 
@@ -16,37 +15,19 @@ With --costs COST_DIR (a run of the same contenders with few seeds and more cost
 repetitions, e.g. --seeds 1 --cost-states 16 --cost-repetitions 7), the whole-step ratios come from
 that run's identical states instead (the best ODE option is still the one of RESULTS_DIRs' seeds).
 
-Usage: bench/solver_seeds/budget_table.py RESULTS_DIR... [--contenders gdc,gdc:maxContacts=6,...]
-                                          [--costs COST_DIR] [--baseline CONTENDER]
+Usage: python3 -m gdcreport budget RESULTS_DIR... [--contenders gdc,gdc:maxContacts=6,...]
+                                    [--costs COST_DIR] [--baseline CONTENDER]
 """
 import argparse
-import csv
 import math
 import os
 from collections import defaultdict
 
+from gdcreport.data import read_csv
+from gdcreport.stats import median, sign_test, wilson
+
 STEPPERS = ["quick10", "quick20", "quick50", "world"]
 STEPPER_LABEL = {"quick10": "QuickStep 10", "quick20": "QuickStep 20", "quick50": "QuickStep 50", "world": "dWorldStep"}
-
-
-def wilson(k, n, z=1.959964):
-    if n == 0:
-        return 0.0, 1.0
-    p = k / n
-    d = 1 + z * z / n
-    c = (p + z * z / (2 * n)) / d
-    h = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / d
-    return max(0.0, c - h), min(1.0, c + h)
-
-
-def sign_test(a, b):
-    """Two-sided exact binomial test of a against b discordant seeds (p = 1/2)."""
-    n = a + b
-    if n == 0:
-        return 1.0
-    k = min(a, b)
-    tail = sum(math.comb(n, i) for i in range(k + 1)) / 2 ** n
-    return min(1.0, 2 * tail)
 
 
 def load(dirs):
@@ -56,45 +37,32 @@ def load(dirs):
     drift = defaultdict(dict)
     summary = {}
     for d in dirs:
-        with open(os.path.join(d, "solver_seeds_runs.csv")) as f:
-            for r in csv.DictReader(f):
-                key = (r["scene"], r["stepper"], r["contender"])
-                runs[key][int(r["seed"])] = r["failed"] == "1"
-                contacts[key][int(r["seed"])] = float(r["contacts_per_step"])
-                t = float(r["sleep_time"])
-                sleep[key][int(r["seed"])] = t if t >= 0 else math.inf
-                drift[key][int(r["seed"])] = float(r["drift"])
-        with open(os.path.join(d, "solver_seeds_summary.csv")) as f:
-            for r in csv.DictReader(f):
-                summary[(r["scene"], r["stepper"], r["contender"])] = r
+        for r in read_csv(os.path.join(d, "solver_seeds_runs.csv")):
+            key = (r["scene"], r["stepper"], r["contender"])
+            runs[key][int(r["seed"])] = r["failed"] == "1"
+            contacts[key][int(r["seed"])] = float(r["contacts_per_step"])
+            t = float(r["sleep_time"])
+            sleep[key][int(r["seed"])] = t if t >= 0 else math.inf
+            drift[key][int(r["seed"])] = float(r["drift"])
+        for r in read_csv(os.path.join(d, "solver_seeds_summary.csv")):
+            summary[(r["scene"], r["stepper"], r["contender"])] = r
     return runs, contacts, summary, sleep, drift
 
 
-def median(values):
-    v = sorted(values)
-    if not v:
-        return math.nan
-    m = len(v) // 2
-    return v[m] if len(v) % 2 else 0.5 * (v[m - 1] + v[m])
-
-
-def main():
+def main(argv=None):
     parser = argparse.ArgumentParser()
     parser.add_argument("dirs", nargs="+")
     parser.add_argument("--contenders", default="gdc,gdc:maxContacts=6,gdc:maxContacts=5,ode-box,ode-convex")
     parser.add_argument("--costs", help="a run whose identical-state costs replace RESULTS_DIRs'")
     parser.add_argument("--baseline", default="gdc",
                         help="the contender the variants are paired with and divided by (the budget in use)")
-    args = parser.parse_args()
+    args = parser.parse_args(argv)
     order = args.contenders.split(",")
     runs, contacts, summary, sleep, drift = load(args.dirs)
     whole_ms = {key: float(r["cost_whole_ms"]) for key, r in summary.items() if r["cost_whole_ms"]}
     if args.costs:
-        whole_ms = {}
-        with open(os.path.join(args.costs, "solver_seeds_summary.csv")) as f:
-            for r in csv.DictReader(f):
-                if r["cost_whole_ms"]:
-                    whole_ms[(r["scene"], r["stepper"], r["contender"])] = float(r["cost_whole_ms"])
+        whole_ms = {(r["scene"], r["stepper"], r["contender"]): float(r["cost_whole_ms"])
+                    for r in read_csv(os.path.join(args.costs, "solver_seeds_summary.csv")) if r["cost_whole_ms"]}
     scenes = []
     for (scene, _, _) in runs:
         if scene not in scenes:
@@ -193,6 +161,3 @@ def sleep_and_drift(runs, sleep, drift, order, variants, base):
             pairs.append(f"{later} / {sooner} ({sign_test(later, sooner):.2g})" if later + sooner else "same")
         print(f"| {scene} | {STEPPER_LABEL[stepper]} | " + " | ".join(cells) + " | " + " | ".join(pairs) + " |")
 
-
-if __name__ == "__main__":
-    main()

@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """Turns the solver benchmark over seeds (bench_solver_seeds, issue 22) into a report section and a plot.
 
 Input, in RESULTS_DIR: solver_seeds_summary.csv (one row per scene x stepper x contender),
@@ -6,18 +5,18 @@ solver_seeds_scenes.csv, solver_seeds_limits.csv and solver_seeds_command.txt, a
 bench_solver_seeds --out RESULTS_DIR writes them. Output: the Markdown section "Solver over seeds"
 (appended to --append FILE, or written to --markdown FILE) and RESULTS_DIR/solver_seeds.png, the
 stability of each contender against its whole-step cost on identical states, one panel per scene.
-Plots use matplotlib (Debian's python3-matplotlib), drawn as scripts/report.py draws; numbers,
-tables, files and plots come from scripts/gdcreport, shared with the other report scripts.
+Plots use matplotlib (Debian's python3-matplotlib), drawn as scenes.py draws; numbers, tables,
+statistics, files and plots come from the rest of this package, shared with the other reports.
 
-Usage: scripts/solver_seeds_report.py RESULTS_DIR [--append REPORT_MD] [--markdown OUT_MD] [--docs DOCS_DIR]
-                                      [--plot-link PATH] [--heading-level N]
+Usage: python3 -m gdcreport solver-seeds RESULTS_DIR [--append REPORT_MD] [--markdown OUT_MD] [--docs DOCS_DIR]
+                                         [--plot-link PATH] [--heading-level N]
 """
 import argparse
 import math
 import os
 import shutil
 
-from gdcreport import data, plots
+from gdcreport import data, plots, stats
 from gdcreport.numbers import fmt, number
 from gdcreport.plots import plt
 from gdcreport.tables import table_lines
@@ -73,7 +72,7 @@ def plot(rows, scenes, results):
             standing = 1.0 - number(r["fail_fraction"])
             low, high = 1.0 - number(r["fail_high95"]), 1.0 - number(r["fail_low95"])
             # gdcontact's marker is larger and drawn first, so that a contender on the same spot shows on top of it
-            # (as scripts/report.py draws coinciding lines).
+            # (as scenes.py draws coinciding lines).
             big = r["contender"] == "gdc"
             ax.errorbar([cost], [standing], yerr=[[standing - low], [high - standing]], fmt=STEPPER_MARKER.get(r["stepper"], "o"),
                         color=colours[r["contender"]], markersize=10 if big else 6, capsize=2, elinewidth=0.8, alpha=0.85,
@@ -124,12 +123,11 @@ def sleep_lines(results, scenes):
                 continue
             later = sum(x > y for x, y in zip(g, b))
             sooner = sum(x < y for x, y in zip(g, b))
-            n, k = later + sooner, min(later, sooner)
-            p = min(1.0, 2 * sum(math.comb(n, i) for i in range(k + 1)) / 2 ** n) if n else 1.0
+            n = later + sooner
+            p = stats.sign_test(later, sooner)
 
             def median(values):
-                v = sorted(values)
-                m = v[len(v) // 2] if len(v) % 2 else 0.5 * (v[len(v) // 2 - 1] + v[len(v) // 2])
+                m = stats.median(values)
                 return "never" if math.isinf(m) else fmt(m, 2)
             lines.append([sc["scene"], STEPPER_LABEL[stepper], str(len(seeds)),
                           f"{sum(not math.isinf(x) for x in g)} / {sum(not math.isinf(x) for x in b)}",
@@ -266,11 +264,7 @@ def section(results, plot_link, level, reproduce=None):
     return "\n".join(out) + "\n", rows, scenes
 
 
-BEGIN = "<!-- solver-seeds: begin (written by scripts/solver_seeds, scripts/solver_seeds_report.py) -->"
-END = "<!-- solver-seeds: end -->"
-
-
-def main():
+def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("results")
     parser.add_argument("--append", help="report to append the section to (e.g. results/report.md)")
@@ -280,7 +274,7 @@ def main():
     parser.add_argument("--reproduce", help="the repository command that made these results, for the section")
     parser.add_argument("--docs", help="docs directory: write the section into DOCS/benchmarks.md (between its "
                         "markers) and the plot to DOCS/images/bench_solver_seeds.png")
-    args = parser.parse_args()
+    args = parser.parse_args(argv)
     if args.docs:
         args.plot_link = "images/bench_solver_seeds.png"
     text, rows, scenes = section(args.results, args.plot_link, args.heading_level, args.reproduce)
@@ -289,9 +283,9 @@ def main():
         os.makedirs(os.path.join(args.docs, "images"), exist_ok=True)
         shutil.copyfile(path, os.path.join(args.docs, "images", "bench_solver_seeds.png"))
         doc = os.path.join(args.docs, "benchmarks.md")
-        # Between its two marker lines of docs/benchmarks.md, replaced or appended (as bench/big_report.py
-        # places the Big worlds section; bench/report.py keeps both).
-        spliced = data.splice(doc, BEGIN, END, text)
+        # Between its two marker lines of docs/benchmarks.md, replaced or appended (as big.py places the
+        # Big worlds section; bench.py keeps both).
+        spliced = data.splice(doc, *data.SOLVER_SEEDS, text)
         with open(doc, "w") as f:
             f.write(spliced)
     if args.append:
@@ -303,6 +297,3 @@ def main():
     if not args.append and not args.markdown and not args.docs:
         print(text)
 
-
-if __name__ == "__main__":
-    main()
