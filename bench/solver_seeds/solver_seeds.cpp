@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <deque>
 #include <functional>
 #include <map>
 #include <memory>
@@ -825,6 +826,21 @@ const std::vector<SceneSpec>& sceneSpecs() {
 const SceneSpec& findScene(const std::string& name) {
     for (const SceneSpec& s : sceneSpecs())
         if (s.name == name) return s;
+    // Any other column by its name (e.g. column19top1: a 20-stack of unit cubes), as the listed ones.
+    int lightCount = 0;
+    bool middle = false, hulls = false;
+    double ratio = 1;
+    if (parseColumn(name, lightCount, middle, ratio, hulls)) {
+        static std::deque<SceneSpec> more;  // stable addresses; one process builds its list once
+        for (const SceneSpec& s : more)
+            if (s.name == name) return s;
+        SceneSpec c = findScene(std::string("column2top10") + (hulls ? "h" : ""));
+        c.name = name;
+        c.description = std::to_string(lightCount) + " unit cubes of 1 kg and one " + std::to_string(static_cast<int>(ratio)) +
+                        " times heavier " + (middle ? "in the middle" : "on top") + (hulls ? ", as convex hulls" : ", as boxes");
+        more.push_back(c);
+        return more.back();
+    }
     std::string known;
     for (const SceneSpec& s : sceneSpecs()) known += (known.empty() ? "" : ", ") + s.name;
     throw std::invalid_argument("unknown scene '" + name + "' (" + known + ")");
