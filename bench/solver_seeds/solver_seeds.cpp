@@ -570,10 +570,20 @@ struct JointMaker {
             const bool heavy = b1 && b2 && std::max(m1, m2) >= w.contender->massRatio * std::min(m1, m2);
             order = heavy ? RowOrder::DeepestFirst : RowOrder::DeepestLast;
         }
-        if (order == RowOrder::DeepDeepestFirst) {
-            double deepest = 0;
+        if (order == RowOrder::DeepDeepestFirst || order == RowOrder::RelativeDeepDeepestFirst) {
+            double deepest = 0, threshold = w.contender->massRatio;
             for (int i = 0; i < count; ++i) deepest = std::max(deepest, static_cast<double>(contacts[i].depth));
-            order = deepest > w.contender->massRatio ? RowOrder::DeepestFirst : RowOrder::DeepestLast;
+            if (order == RowOrder::RelativeDeepDeepestFirst) {
+                double size = 0;
+                for (dGeomID g : {g1, g2}) {
+                    if (dGeomGetClass(g) == dPlaneClass) continue;
+                    dReal box[6];
+                    dGeomGetAABB(g, box);
+                    size = std::max(size, static_cast<double>(std::min({box[1] - box[0], box[3] - box[2], box[5] - box[4]})));
+                }
+                threshold *= size;
+            }
+            order = deepest > threshold ? RowOrder::DeepestFirst : RowOrder::DeepestLast;
         }
         if (order == RowOrder::Reversed) std::reverse(created.begin(), created.end());
         if (order == RowOrder::DeepestFirst)  // created shallowest first: met deepest first
@@ -709,8 +719,10 @@ Contender parseContender(const std::string& full) {
         else if (order == "deepest-last") c.order = RowOrder::DeepestLast;
         else if (order == "heavy-deepest-first") c.order = RowOrder::HeavyDeepestFirst;
         else if (order == "deep-deepest-first") c.order = RowOrder::DeepDeepestFirst;
+        else if (order == "relative-deep-deepest-first") c.order = RowOrder::RelativeDeepDeepestFirst;
         else throw std::invalid_argument("contender '" + full + "': order '" + order +
-                                         "' is not as-is, reversed, deepest-first, deepest-last or heavy-deepest-first[:RATIO]");
+                                         "' is not as-is, reversed, deepest-first, deepest-last, heavy-deepest-first[:RATIO], "
+                                         "deep-deepest-first[:METRES] or relative-deep-deepest-first[:FRACTION]");
     }
     if (spec == "gdc") return c;
     if (spec == "ode-box") {

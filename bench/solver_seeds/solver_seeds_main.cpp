@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -378,6 +379,7 @@ int main(int argc, char** argv) {
         }
 
         // ---- files ----
+        std::filesystem::create_directories(o.out);
         const std::string prefix = o.out + "/solver_seeds_";
         {
             std::ofstream f(prefix + "runs.csv");
