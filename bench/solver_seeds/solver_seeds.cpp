@@ -11,7 +11,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <deque>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -336,7 +338,57 @@ void buildCards(BenchScene& s) {
     }
 }
 
+void buildColumn(BenchScene& s, int lightCount, bool heavyInMiddle, double ratio, bool hulls) {
+    // A column of `lightCount` unit cubes of 1 kg and one cube `ratio` times heavier, on top or in
+    // the middle (half the light ones, rounded up, below it), stacked without gaps; as dBox geoms or,
+    // with `hulls`, as convex hulls (dConvex geoms).
+    s.ground();
+    const Vec3 half(0.5, 0.5, 0.5);
+    const double lightDensity = 1.0 / (8 * half.prod());
+    const int below = heavyInMiddle ? (lightCount + 1) / 2 : lightCount;
+    for (int i = 0; i <= lightCount; ++i) {
+        const double density = (i == below ? ratio : 1.0) * lightDensity;
+        const Pose pose = at(0, 0, half.z() + i * 2 * half.z());
+        if (hulls) s.body({PlacedPart{gdc::scenes::makeBox(half), Pose{}, false, half}}, density, pose);
+        else s.box(half, density, pose);
+    }
+}
+
+/// The heap of composites let go one by one (SceneSpec::releaseInterval): twelve composites, each
+/// placed where it is let go from, in a spiral 0.6 m above the ground rising 8 cm per body.
+void buildReleasedHeap(BenchScene& s) {
+    s.ground();
+    const auto shapes = compositeShapes();
+    Random turns(17);
+    for (int k = 0; k < 12; ++k) {
+        const double angle = 2.4 * k, radius = 0.08;
+        s.body(shapes[k % shapes.size()], 700.0,
+               at(radius * std::cos(angle), radius * std::sin(angle), 0.6 + 0.08 * k, turns.uniform(-gdc::scenes::kPi, gdc::scenes::kPi)));
+    }
+}
+
+/// "column" + light cubes (2–4) + "top" or "mid" + the heavy cube's mass ratio (10, 100, 1000) +
+/// "h" for hulls, e.g. column3mid100h; false if `name` is not one.
+bool parseColumn(const std::string& name, int& lightCount, bool& middle, double& ratio, bool& hulls) {
+    char where[4] = {};
+    int count = 0, r = 0, used = 0;
+    if (std::sscanf(name.c_str(), "column%d%3[a-z]%d%n", &count, where, &r, &used) != 3) return false;
+    const std::string rest = name.substr(static_cast<std::size_t>(used));
+    if (count < 1 || r < 1 || (std::string(where) != "top" && std::string(where) != "mid") || (rest != "" && rest != "h")) return false;
+    lightCount = count;
+    middle = std::string(where) == "mid";
+    ratio = r;
+    hulls = rest == "h";
+    return true;
+}
+
 BenchScene::Builder builderFor(const std::string& name) {
+    int lightCount = 0;
+    bool middle = false, hulls = false;
+    double ratio = 1;
+    if (parseColumn(name, lightCount, middle, ratio, hulls))
+        return [=](BenchScene& s) { buildColumn(s, lightCount, middle, ratio, hulls); };
+    if (name == "heap12") return buildReleasedHeap;
     if (name == "stack10") return [](BenchScene& s) { buildStack(s, 10); };
     if (name == "stack20") return [](BenchScene& s) { buildStack(s, 20); };
     if (name == "heavy100") return [](BenchScene& s) { buildHeavyOnLight(s, 100.0); };
@@ -366,6 +418,17 @@ struct World {
     std::vector<double> size;    // least horizontal extent at the start (m)
     std::vector<double> height;  // vertical extent at the start (m)
     std::vector<double> allowedDrop;
+    std::vector<double> extent;  // largest horizontal extent at the start (m)
+    // Heaps let go one by one: each body's start state, whether it was let go, where it was when
+    // the heap settled.
+    std::vector<BodyState> startState;
+    std::vector<char> released;
+    std::vector<Vec3> settledPosition;
+    double mu = SolverConstants::mu;
+    int contactsAsked = SolverConstants::contactsAsked;
+    const Contender* contender = nullptr;  // the pair order's rule (JointMaker)
+    bool record = false;                   // keep every joint's contact (compareContacts)
+    std::vector<std::pair<dJointID, dContactGeom>> recorded;
     std::unordered_map<dGeomID, int> serial;  // creation order: pairs are collided in it
     struct Pair {
         int first, second;
@@ -393,12 +456,19 @@ std::uint64_t jitterSeed(int seed, std::size_t body) {
     return (static_cast<std::uint64_t>(seed) + 1) * 0x9E3779B97F4A7C15ull ^ (body + 1) * 0xBF58476D1CE4E5B9ull;
 }
 
-std::unique_ptr<World> makeWorld(const SceneSpec& spec, const Stepper& stepper, ColliderKind kind, int seed, bool sleep) {
+BodyState stateOf(dBodyID body);
+void setState(dBodyID body, const BodyState& s);
+
+std::unique_ptr<World> makeWorld(const SceneSpec& spec, const Stepper& stepper, ColliderKind kind, int seed, bool sleep,
+                                 double jitter = 1.0) {
     auto w = std::make_unique<World>();
     w->scene = std::make_unique<BenchScene>(spec.name, kind == ColliderKind::OdeConvex, builderFor(spec.name));
     w->scene->reset();
     dWorldID world = w->scene->world();
     dWorldSetQuickStepNumIterations(world, stepper.iterations);
+    dWorldSetCFM(world, stepper.cfm);
+    w->mu = stepper.mu;
+    w->contactsAsked = stepper.contactsAsked;
     w->contacts = dJointGroupCreate(0);
     int next = 0;
     for (dGeomID geom : w->scene->staticGeoms()) w->serial[geom] = next++;
@@ -408,11 +478,11 @@ std::unique_ptr<World> makeWorld(const SceneSpec& spec, const Stepper& stepper, 
         for (const gdc::scenes::Part& part : body.parts) w->serial[part.geom] = next++;
         // The seed's jitter: horizontal offset, a turn about the vertical and small tilts.
         Random random(jitterSeed(seed, i));
-        const double dx = random.uniform(-Jitter::position, Jitter::position);
-        const double dy = random.uniform(-Jitter::position, Jitter::position);
-        const double yaw = random.uniform(-Jitter::yaw, Jitter::yaw);
-        const double tiltX = random.uniform(-Jitter::tilt, Jitter::tilt);
-        const double tiltY = random.uniform(-Jitter::tilt, Jitter::tilt);
+        const double dx = jitter * random.uniform(-Jitter::position, Jitter::position);
+        const double dy = jitter * random.uniform(-Jitter::position, Jitter::position);
+        const double yaw = jitter * random.uniform(-Jitter::yaw, Jitter::yaw);
+        const double tiltX = jitter * random.uniform(-Jitter::tilt, Jitter::tilt);
+        const double tiltY = jitter * random.uniform(-Jitter::tilt, Jitter::tilt);
         const dReal* p = dBodyGetPosition(body.body);
         const dReal* r = dBodyGetRotation(body.body);
         Mat3 rotation;
@@ -442,12 +512,33 @@ std::unique_ptr<World> makeWorld(const SceneSpec& spec, const Stepper& stepper, 
             }
         }
         w->size.push_back(std::min(high.x() - low.x(), high.y() - low.y()));
+        w->extent.push_back(std::max(high.x() - low.x(), high.y() - low.y()));
         w->height.push_back(high.z() - low.z());
     }
     if (w->allowedDrop.size() != w->bodies.size()) w->allowedDrop.assign(w->bodies.size(), 0.0);
     dWorldSetAutoDisableFlag(world, sleep ? 1 : 0);  // ODE's default thresholds
     for (dBodyID body : w->bodies) dBodySetAutoDisableDefaults(body);
+    w->released.assign(w->bodies.size(), 1);
+    if (spec.releaseInterval > 0) {
+        // Every body waits disabled, 20 m up and 3 m from the next, until it is let go.
+        for (std::size_t i = 0; i < w->bodies.size(); ++i) {
+            w->startState.push_back(stateOf(w->bodies[i]));
+            w->released[i] = 0;
+            dBodySetPosition(w->bodies[i], 3.0 * static_cast<double>(i + 1), 30.0, 20.0);
+            dBodyDisable(w->bodies[i]);
+        }
+    }
     return w;
+}
+
+/// Heaps let go one by one: lets go every body whose time has come by the step that ends at `time`.
+void releaseBodies(World& w, const SceneSpec& spec, double time) {
+    if (spec.releaseInterval <= 0) return;
+    for (std::size_t i = 0; i < w.bodies.size(); ++i) {
+        if (w.released[i] || time + 1e-9 < spec.releaseInterval * static_cast<double>(i)) continue;
+        setState(w.bodies[i], w.startState[i]);
+        w.released[i] = 1;
+    }
 }
 
 void nearCallback(void* data, dGeomID o1, dGeomID o2) {
@@ -468,8 +559,39 @@ struct JointMaker {
         JointMaker& maker = *static_cast<JointMaker*>(data);
         World& w = *maker.w;
         dBodyID b1 = dGeomGetBody(g1), b2 = dGeomGetBody(g2);
-        for (int i = 0; i < count; ++i) {
-            const dContactGeom& c = contacts[i];
+        // The order the solver meets the rows: the reverse of their creation (RowOrder).
+        std::vector<int> created(static_cast<std::size_t>(std::max(count, 0)));
+        for (int i = 0; i < count; ++i) created[i] = i;
+        RowOrder order = w.contender ? w.contender->order : RowOrder::AsIs;
+        if (order == RowOrder::HeavyDeepestFirst) {
+            double m1 = 0, m2 = 0;
+            if (b1) { dMass m; dBodyGetMass(b1, &m); m1 = m.mass; }
+            if (b2) { dMass m; dBodyGetMass(b2, &m); m2 = m.mass; }
+            const bool heavy = b1 && b2 && std::max(m1, m2) >= w.contender->massRatio * std::min(m1, m2);
+            order = heavy ? RowOrder::DeepestFirst : RowOrder::DeepestLast;
+        }
+        if (order == RowOrder::DeepDeepestFirst || order == RowOrder::RelativeDeepDeepestFirst) {
+            double deepest = 0, threshold = w.contender->massRatio;
+            for (int i = 0; i < count; ++i) deepest = std::max(deepest, static_cast<double>(contacts[i].depth));
+            if (order == RowOrder::RelativeDeepDeepestFirst) {
+                double size = 0;
+                for (dGeomID g : {g1, g2}) {
+                    if (dGeomGetClass(g) == dPlaneClass) continue;
+                    dReal box[6];
+                    dGeomGetAABB(g, box);
+                    size = std::max(size, static_cast<double>(std::min({box[1] - box[0], box[3] - box[2], box[5] - box[4]})));
+                }
+                threshold *= size;
+            }
+            order = deepest > threshold ? RowOrder::DeepestFirst : RowOrder::DeepestLast;
+        }
+        if (order == RowOrder::Reversed) std::reverse(created.begin(), created.end());
+        if (order == RowOrder::DeepestFirst)  // created shallowest first: met deepest first
+            std::stable_sort(created.begin(), created.end(), [&](int a, int b) { return contacts[a].depth < contacts[b].depth; });
+        if (order == RowOrder::DeepestLast)
+            std::stable_sort(created.begin(), created.end(), [&](int a, int b) { return contacts[a].depth > contacts[b].depth; });
+        for (int k = 0; k < count; ++k) {
+            const dContactGeom& c = contacts[created[k]];
             const double length = std::sqrt(c.normal[0] * c.normal[0] + c.normal[1] * c.normal[1] + c.normal[2] * c.normal[2]);
             // ODE's convex collider gives a zero normal for exactly touching shapes (ODE would abort).
             if (!std::isfinite(length) || std::abs(length - 1.0) > 1e-6 || !std::isfinite(c.depth) ||
@@ -479,12 +601,13 @@ struct JointMaker {
             }
             dContact contact{};
             contact.surface.mode = dContactApprox1;
-            contact.surface.mu = SolverConstants::mu;
+            contact.surface.mu = w.mu;
             contact.geom = c;
             contact.geom.g1 = g1;
             contact.geom.g2 = g2;
             dJointID joint = dJointCreateContact(w.scene->world(), w.contacts, &contact);
             dJointAttach(joint, b1, b2);
+            if (w.record) w.recorded.push_back({joint, contact.geom});
             ++maker.made;
         }
     }
@@ -499,6 +622,7 @@ int collideAll(World& w, const Contender& contender) {
     dSpaceCollide(w.scene->space(), &w, &nearCallback);
     std::sort(w.pairs.begin(), w.pairs.end());
     JointMaker maker{&w, 0};
+    w.contender = &contender;
     const bool gdcontact = contender.kind == ColliderKind::Gdcontact;
     std::optional<gdc::ode::BodyPairContacts> collected;
     if (gdcontact) collected.emplace(contender.settings);
@@ -507,9 +631,9 @@ int collideAll(World& w, const Contender& contender) {
         if (b1 == b2) continue;  // parts of one composite, or two static geoms
         if (b1 && b2 && dAreConnectedExcluding(b1, b2, dJointTypeContact)) continue;
         const int count = gdcontact
-                              ? gdc::ode::collide(pair.g1, pair.g2, SolverConstants::contactsAsked, w.buffer.data(),
+                              ? gdc::ode::collide(pair.g1, pair.g2, w.contactsAsked, w.buffer.data(),
                                                   sizeof(dContactGeom), contender.settings)
-                              : dCollide(pair.g1, pair.g2, SolverConstants::contactsAsked, w.buffer.data(), sizeof(dContactGeom));
+                              : dCollide(pair.g1, pair.g2, w.contactsAsked, w.buffer.data(), sizeof(dContactGeom));
         if (gdcontact) collected->add(pair.g1, pair.g2, w.buffer.data(), count);
         else if (count > 0) JointMaker::handler(&maker, pair.g1, pair.g2, w.buffer.data(), count);
     }
@@ -576,9 +700,30 @@ std::vector<std::string> settingNames() {
     return names;
 }
 
-Contender parseContender(const std::string& spec) {
+Contender parseContender(const std::string& full) {
     Contender c;
-    c.name = spec;
+    c.name = full;
+    std::string spec = full;
+    const auto plus = full.find("+order=");
+    if (plus != std::string::npos) {
+        spec = full.substr(0, plus);
+        std::string order = full.substr(plus + 7);
+        const auto colon = order.find(':');
+        if (colon != std::string::npos) {
+            c.massRatio = parseDouble("+order ratio", order.substr(colon + 1));
+            order = order.substr(0, colon);
+        }
+        if (order == "as-is") c.order = RowOrder::AsIs;
+        else if (order == "reversed") c.order = RowOrder::Reversed;
+        else if (order == "deepest-first") c.order = RowOrder::DeepestFirst;
+        else if (order == "deepest-last") c.order = RowOrder::DeepestLast;
+        else if (order == "heavy-deepest-first") c.order = RowOrder::HeavyDeepestFirst;
+        else if (order == "deep-deepest-first") c.order = RowOrder::DeepDeepestFirst;
+        else if (order == "relative-deep-deepest-first") c.order = RowOrder::RelativeDeepDeepestFirst;
+        else throw std::invalid_argument("contender '" + full + "': order '" + order +
+                                         "' is not as-is, reversed, deepest-first, deepest-last, heavy-deepest-first[:RATIO], "
+                                         "deep-deepest-first[:METRES] or relative-deep-deepest-first[:FRACTION]");
+    }
     if (spec == "gdc") return c;
     if (spec == "ode-box") {
         c.kind = ColliderKind::OdeBox;
@@ -611,9 +756,25 @@ std::vector<Stepper> allSteppers() {
 }
 
 Stepper parseStepper(const std::string& name) {
-    for (const Stepper& s : allSteppers())
-        if (s.name == name) return s;
-    throw std::invalid_argument("unknown stepper '" + name + "' (quick10, quick20, quick50, world)");
+    std::stringstream parts(name);
+    std::string base, item;
+    std::getline(parts, base, '/');
+    for (Stepper s : allSteppers()) {
+        if (s.name != base) continue;
+        s.name = name;
+        while (std::getline(parts, item, '/')) {
+            const auto equals = item.find('=');
+            const std::string key = item.substr(0, equals), value = equals == std::string::npos ? "" : item.substr(equals + 1);
+            if (key == "cfm") s.cfm = parseDouble("cfm", value);
+            else if (key == "mu") s.mu = parseDouble("mu", value);
+            else if (key == "maxc") s.contactsAsked = parseInt("maxc", value);
+            else throw std::invalid_argument("stepper '" + name + "': '" + item + "' is not cfm=X, mu=X or maxc=N");
+        }
+        if (s.contactsAsked < 1 || s.contactsAsked > SolverConstants::contactsAsked || !(s.cfm >= 0) || !(s.mu >= 0))
+            throw std::invalid_argument("stepper '" + name + "': maxc 1..16, cfm and mu >= 0");
+        return s;
+    }
+    throw std::invalid_argument("unknown stepper '" + name + "' (quick10, quick20, quick50, world; /cfm=X/mu=X/maxc=N)");
 }
 
 const std::vector<SceneSpec>& sceneSpecs() {
@@ -634,12 +795,64 @@ const std::vector<SceneSpec>& sceneSpecs() {
         {"cards", "6 cards (20×30 cm, 5 mm) leaning in a row on each other and on a 9 kg book, each edge on the face of the one before", 3.0, true,
          false, true, "", 50},
     };
-    return specs;
+    static const std::vector<SceneSpec> all = [] {
+        std::vector<SceneSpec> list = specs;
+        // Columns (issue 35): 2–4 light unit cubes of 1 kg and a heavy one on top or in the middle.
+        for (const bool hulls : {false, true})
+            for (const char* where : {"top", "mid"})
+                for (const int ratio : {10, 100, 1000})
+                    for (int light = 2; light <= 4; ++light) {
+                        SceneSpec c;
+                        c.name = "column" + std::to_string(light) + where + std::to_string(ratio) + (hulls ? "h" : "");
+                        c.description = std::to_string(light) + " unit cubes of 1 kg and one of " + std::to_string(ratio) + " kg " +
+                                        (std::string(where) == "top" ? "on top" : "in the middle") + ", stacked" +
+                                        (hulls ? ", as convex hulls" : ", as boxes");
+                        c.duration = 10.0;
+                        c.jitterScale = 10.0;
+                        c.neverSleeps = true;
+                        c.hasBoxes = !hulls;
+                        c.defaultSeeds = 20;
+                        c.defaultWorldSeeds = 20;
+                        c.fullSeeds = 200;
+                        c.family = "column";
+                        list.push_back(c);
+                    }
+        SceneSpec heap;
+        heap.name = "heap12";
+        heap.description = "12 composites of 3–5 boxes (table, cross, L, T) let go one by one, 0.5 s apart, onto a heap; creep watched for 5 s from 2 s after the last";
+        heap.duration = 12.5;
+        heap.heap = true;
+        heap.defaultSeeds = 10;
+        heap.defaultWorldSeeds = 5;
+        heap.fullSeeds = 60;
+        heap.releaseInterval = 0.5;
+        heap.settleTime = 2.0;
+        heap.family = "heap";
+        heap.neverSleeps = true;
+        list.push_back(heap);
+        return list;
+    }();
+    return all;
 }
 
 const SceneSpec& findScene(const std::string& name) {
     for (const SceneSpec& s : sceneSpecs())
         if (s.name == name) return s;
+    // Any other column by its name (e.g. column19top1: a 20-stack of unit cubes), as the listed ones.
+    int lightCount = 0;
+    bool middle = false, hulls = false;
+    double ratio = 1;
+    if (parseColumn(name, lightCount, middle, ratio, hulls)) {
+        static std::deque<SceneSpec> more;  // stable addresses; one process builds its list once
+        for (const SceneSpec& s : more)
+            if (s.name == name) return s;
+        SceneSpec c = findScene(std::string("column2top10") + (hulls ? "h" : ""));
+        c.name = name;
+        c.description = std::to_string(lightCount) + " unit cubes of 1 kg and one " + std::to_string(static_cast<int>(ratio)) +
+                        " times heavier " + (middle ? "in the middle" : "on top") + (hulls ? ", as convex hulls" : ", as boxes");
+        more.push_back(c);
+        return more.back();
+    }
     std::string known;
     for (const SceneSpec& s : sceneSpecs()) known += (known.empty() ? "" : ", ") + s.name;
     throw std::invalid_argument("unknown scene '" + name + "' (" + known + ")");
@@ -655,6 +868,7 @@ const char* failureName(Failure failure) {
         case Failure::Tilt: return "tilt";
         case Failure::Drop: return "drop";
         case Failure::Crashed: return "crashed";
+        case Failure::Creep: return "creep";
     }
     return "?";
 }
@@ -665,6 +879,7 @@ constexpr double kFlungDistance = 5.0;       // m horizontally from the origin (
 constexpr double kDriftFraction = 0.5;       // of the body's least horizontal extent
 constexpr double kTiltLimit = 0.25;          // rad
 constexpr double kDropFraction = 0.5;        // of the body's height, beyond its start gap
+constexpr double kCreepDistance = 0.05;      // m horizontally since a heap let go one by one settled
 }  // namespace
 
 const std::vector<FailureLimit>& failureLimits() {
@@ -678,6 +893,16 @@ const std::vector<FailureLimit>& failureLimits() {
         {Failure::Tilt, "standing", "a body's up axis is turned more than 0.25 rad (14°) from its start at the end"},
         {Failure::Drop, "standing", "a body's centre is lower than its start by more than half its height (plus the gap it started above its support) at the end"},
         {Failure::Crashed, "all", "the run did not finish (ODE aborted the worker process)"},
+        {Failure::Creep, "heaps let go one by one", "a body lies more than 50 mm (horizontally) from where it was when the heap settled, at the end"},
+    };
+    return limits;
+}
+
+const std::vector<FailureLimit>& collapseLimits() {
+    static const std::vector<FailureLimit> limits = {
+        {Failure::Drop, "standing", "a body's centre is lower than its start by more than half its height (plus its start gap) at the end: the structure fell"},
+        {Failure::Creep, "heaps let go one by one", "a body lies farther from where it was when the heap settled than its largest horizontal extent, at the end"},
+        {Failure::Exploded, "all", "exploded, tunnelled, flung or crashed (as in the fine limits)"},
     };
     return limits;
 }
@@ -687,7 +912,7 @@ void installMessageCounter() { dSetMessageHandler(&countMessage); }
 SeedResult runSeed(const SceneSpec& spec, const Stepper& stepper, const Contender& contender, int seed,
                    const RunOptions& options) {
     SeedResult result;
-    auto w = makeWorld(spec, stepper, contender.kind, seed, options.sleep);
+    auto w = makeWorld(spec, stepper, contender.kind, seed, options.sleep && !spec.neverSleeps, options.jitterScale * spec.jitterScale);
     dRandSetSeed(static_cast<unsigned long>(seed));
     const int messagesBefore = gMessages, lcpBefore = gLcpErrors;
     const std::size_t n = w->bodies.size();
@@ -701,7 +926,11 @@ SeedResult runSeed(const SceneSpec& spec, const Stepper& stepper, const Contende
     double violatedSince = -1;
     std::size_t violator = 0;
     int step = 0;
+    const double settleAt = spec.releaseInterval > 0
+                                ? spec.releaseInterval * static_cast<double>(n > 0 ? n - 1 : 0) + spec.settleTime
+                                : -1.0;
     for (; step < steps; ++step) {
+        releaseBodies(*w, spec, step * SolverConstants::dt);
         const auto t0 = Clock::now();
         contacts += collideAll(*w, contender);
         const auto t1 = Clock::now();
@@ -722,10 +951,16 @@ SeedResult runSeed(const SceneSpec& spec, const Stepper& stepper, const Contende
                 nowBody = i;
             }
         };
+        const bool settling = settleAt >= 0 && w->settledPosition.empty() && time + 1e-9 >= settleAt;
         for (std::size_t i = 0; i < n; ++i) {
             dBodyID body = w->bodies[i];
+            if (!w->released[i]) {
+                ++asleep;
+                continue;
+            }
             const dReal* p = dBodyGetPosition(body);
             const Vec3 position(p[0], p[1], p[2]);
+            if (settling) w->settledPosition.push_back(position);
             if (!position.allFinite() || position.norm() > kExplodedDistance) {
                 exploded = true;
                 break;
@@ -735,13 +970,16 @@ SeedResult runSeed(const SceneSpec& spec, const Stepper& stepper, const Contende
             result.maxTilt = std::max(result.maxTilt, tilt);
             if (spec.heap) {
                 if (position.head<2>().norm() > kFlungDistance) fail(Failure::Flung, i);
+                if (!settling && !w->settledPosition.empty() &&
+                    (position - w->settledPosition[i]).head<2>().norm() > kCreepDistance)
+                    fail(Failure::Creep, i);
             } else {
                 const Vec3 moved = position - w->startPosition[i];
                 if (moved.head<2>().norm() > kDriftFraction * w->size[i]) fail(Failure::Drift, i);
                 if (tilt > kTiltLimit) fail(Failure::Tilt, i);
                 if (-moved.z() > kDropFraction * w->height[i] + w->allowedDrop[i]) fail(Failure::Drop, i);
             }
-            if (options.sleep) {
+            if (options.sleep && !spec.neverSleeps) {
                 asleep += dBodyIsEnabled(body) ? 0 : 1;
             } else {
                 const dReal* v = dBodyGetLinearVel(body);
@@ -786,10 +1024,31 @@ SeedResult runSeed(const SceneSpec& spec, const Stepper& stepper, const Contende
         }
     }
     for (std::size_t i = 0; i < n && result.failure != static_cast<int>(Failure::Exploded); ++i) {
+        if (!w->released[i]) continue;
         const dReal* p = dBodyGetPosition(w->bodies[i]);
         result.drift = std::max(result.drift, std::hypot(p[0] - w->startPosition[i].x(), p[1] - w->startPosition[i].y()));
     }
     if (result.failure == static_cast<int>(Failure::Exploded)) result.drift = kExplodedDistance;
+    // The gross criterion (collapseLimits()): at the end, a standing scene's body sank by half its
+    // height, or a heap body let go one by one moved more than its size since the heap settled;
+    // in every scene, a run that exploded, tunnelled, was flung or crashed.
+    const Failure f = static_cast<Failure>(result.failure);
+    result.collapsed = f == Failure::Exploded || f == Failure::Tunnelled || f == Failure::Flung;
+    for (std::size_t i = 0; i < n && !result.collapsed; ++i) {
+        const dReal* p = dBodyGetPosition(w->bodies[i]);
+        const Vec3 position(p[0], p[1], p[2]);
+        if (!spec.heap) {
+            if (w->startPosition[i].z() - position.z() > kDropFraction * w->height[i] + w->allowedDrop[i]) result.collapsed = 1;
+        } else if (!w->settledPosition.empty()) {
+            const double moved = (position - w->settledPosition[i]).head<2>().norm();
+            result.creep = std::max(result.creep, moved);
+            if (moved > w->extent[i]) result.collapsed = 1;
+        }
+    }
+    for (std::size_t i = 0; i < n && !w->settledPosition.empty() && f != Failure::Exploded; ++i) {
+        const dReal* p = dBodyGetPosition(w->bodies[i]);
+        result.creep = std::max(result.creep, (Vec3(p[0], p[1], p[2]) - w->settledPosition[i]).head<2>().norm());
+    }
     if (step > 0) {
         result.contactsPerStep = contacts / step;
         result.collisionMs = collision / step;
@@ -808,7 +1067,7 @@ std::vector<CostResult> measureCost(const SceneSpec& spec, const Stepper& steppe
     // The reference run, its states sampled at the middles of `states` equal parts of the run.
     std::vector<std::vector<BodyState>> sampled;
     {
-        auto w = makeWorld(spec, stepper, reference.kind, seed, options.sleep);
+        auto w = makeWorld(spec, stepper, reference.kind, seed, options.sleep && !spec.neverSleeps, options.jitterScale * spec.jitterScale);
         dRandSetSeed(static_cast<unsigned long>(seed));
         const int steps = static_cast<int>(std::lround(spec.duration * options.durationScale / SolverConstants::dt));
         int nextSample = 0;
@@ -820,13 +1079,14 @@ std::vector<CostResult> measureCost(const SceneSpec& spec, const Stepper& steppe
                 sampled.push_back(std::move(state));
                 ++nextSample;
             }
+            releaseBodies(*w, spec, step * SolverConstants::dt);
             collideAll(*w, reference);
             stepWorld(*w, stepper, options);
             dJointGroupEmpty(w->contacts);
         }
     }
     std::vector<std::unique_ptr<World>> worlds;
-    for (const Contender& c : contenders) worlds.push_back(makeWorld(spec, stepper, c.kind, seed, false));
+    for (const Contender& c : contenders) worlds.push_back(makeWorld(spec, stepper, c.kind, seed, false, options.jitterScale * spec.jitterScale));
     std::vector<CostResult> results(contenders.size());
     for (std::size_t s = 0; s < sampled.size(); ++s) {
         std::vector<double> bestCollision(contenders.size(), 1e300), bestSolver(contenders.size(), 1e300);
@@ -871,6 +1131,83 @@ std::vector<CostResult> measureCost(const SceneSpec& spec, const Stepper& steppe
         r.contacts /= r.states;
     }
     return results;
+}
+
+namespace {
+/// The order dWorldQuickStep meets the joints of `bodies` in (ODE 0.16's dxProcessIslands): the
+/// world's body list newest first, depth first, each body's joints newest first (dBodyGetJoint 0).
+std::vector<dJointID> solverJointOrder(const std::vector<dBodyID>& bodies) {
+    std::vector<dJointID> order;
+    std::unordered_map<dBodyID, bool> seenBody;
+    std::unordered_map<dJointID, bool> seenJoint;
+    for (auto it = bodies.rbegin(); it != bodies.rend(); ++it) {
+        if (seenBody[*it] || !dBodyIsEnabled(*it)) continue;
+        std::vector<dBodyID> stack{*it};
+        seenBody[*it] = true;
+        while (!stack.empty()) {
+            dBodyID b = stack.back();
+            stack.pop_back();
+            for (int j = 0; j < dBodyGetNumJoints(b); ++j) {
+                dJointID joint = dBodyGetJoint(b, j);
+                if (seenJoint[joint] || !dJointIsEnabled(joint)) continue;
+                seenJoint[joint] = true;
+                order.push_back(joint);
+                for (int end = 0; end < 2; ++end) {
+                    dBodyID other = dJointGetBody(joint, end);
+                    if (other && !seenBody[other]) {
+                        seenBody[other] = true;
+                        stack.push_back(other);
+                    }
+                }
+            }
+        }
+    }
+    return order;
+}
+}  // namespace
+
+void compareContacts(const SceneSpec& spec, const Stepper& stepper, const std::vector<Contender>& contenders,
+                     const Contender& reference, int seed, double time, const RunOptions& options, std::FILE* out) {
+    // The reference run to `time`, its state then copied into every contender's world.
+    std::vector<BodyState> state;
+    {
+        auto w = makeWorld(spec, stepper, reference.kind, seed, false, options.jitterScale * spec.jitterScale);
+        dRandSetSeed(static_cast<unsigned long>(seed));
+        const int steps = static_cast<int>(std::lround(time / SolverConstants::dt));
+        for (int step = 0; step < steps; ++step) {
+            releaseBodies(*w, spec, step * SolverConstants::dt);
+            collideAll(*w, reference);
+            stepWorld(*w, stepper, options);
+            dJointGroupEmpty(w->contacts);
+        }
+        for (dBodyID body : w->bodies) state.push_back(stateOf(body));
+    }
+    std::fprintf(out, "contender,met,body1,body2,pair_row,pos_x,pos_y,pos_z,depth,normal_x,normal_y,normal_z,fdir1_x,fdir1_y,fdir1_z\n");
+    for (const Contender& c : contenders) {
+        auto w = makeWorld(spec, stepper, c.kind, seed, false, options.jitterScale * spec.jitterScale);
+        for (std::size_t i = 0; i < w->bodies.size(); ++i) setState(w->bodies[i], state[i]);
+        std::unordered_map<dBodyID, int> index;
+        for (std::size_t i = 0; i < w->bodies.size(); ++i) index[w->bodies[i]] = static_cast<int>(i);
+        w->record = true;
+        collideAll(*w, c);
+        std::unordered_map<dJointID, dContactGeom> geomOf(w->recorded.begin(), w->recorded.end());
+        std::map<std::pair<int, int>, int> rowOfPair;
+        int met = 0;
+        for (dJointID joint : solverJointOrder(w->bodies)) {
+            const auto found = geomOf.find(joint);
+            if (found == geomOf.end()) continue;
+            const dContactGeom& g = found->second;
+            dBodyID b1 = dJointGetBody(joint, 0), b2 = dJointGetBody(joint, 1);
+            const int i1 = b1 ? index[b1] : -1, i2 = b2 ? index[b2] : -1;
+            // ODE's friction directions for a contact without dContactFDir1 (dContactApprox1 here).
+            dVector3 t1, t2;
+            dPlaneSpace(g.normal, t1, t2);
+            std::fprintf(out, "%s,%d,%d,%d,%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", c.name.c_str(), met++, i1, i2,
+                         rowOfPair[{i1, i2}]++, g.pos[0], g.pos[1], g.pos[2], g.depth, g.normal[0], g.normal[1], g.normal[2],
+                         t1[0], t1[1], t1[2]);
+        }
+        dJointGroupEmpty(w->contacts);
+    }
 }
 
 void rootIslandsAtLowest(const std::vector<dBodyID>& bodies) {

@@ -17,6 +17,7 @@
 #include <ode/ode.h>
 
 #include <cstdint>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -29,14 +30,36 @@ enum class ColliderKind {
     OdeConvex,  ///< ODE's own colliders, every shape a dConvex (libccd's one-point convex collider)
 };
 
+/// An experiment on the order the solver meets one geom pair's rows (docs/algorithm.md, "Column
+/// and heap"): the contender's contacts of each pair are rearranged before they become joints.
+/// The solver meets a pair's joints in the reverse of their creation (docs/algorithm.md, "Order");
+/// every name below says the order the solver *meets* them in.
+enum class RowOrder {
+    AsIs,          ///< the collider's own order
+    Reversed,      ///< the collider's array reversed
+    DeepestFirst,  ///< by depth, deepest met first (stable)
+    DeepestLast,   ///< by depth, deepest met last (stable)
+    /// Deepest met first where one body of the pair is heavier than the other by the factor
+    /// Contender::massRatio or more (or one side is static), else deepest met last.
+    HeavyDeepestFirst,
+    /// Deepest met first where the pair's deepest point is deeper than Contender::massRatio (m),
+    /// else deepest met last.
+    DeepDeepestFirst,
+    /// The same, the threshold relative to the pair's size: Contender::massRatio times the larger
+    /// of the two geoms' least bounding-box extents (a scale-free stand-in for the load a pair carries).
+    RelativeDeepDeepestFirst,
+};
+
 struct Contender {
-    std::string name;  ///< "gdc", "ode-box", "ode-convex", or e.g. "gdc:maxContacts=4"
+    std::string name;  ///< "gdc", "ode-box", "ode-convex", or e.g. "gdc:maxContacts=4"; "+order=NAME" appended
     ColliderKind kind = ColliderKind::Gdcontact;
     gdc::Settings settings;  ///< gdcontact's settings (Gdcontact only)
+    RowOrder order = RowOrder::AsIs;  ///< "+order=as-is|reversed|deepest-first|deepest-last|heavy-deepest-first[:RATIO]"
+    double massRatio = 4.0;           ///< HeavyDeepestFirst's threshold
 };
 
 /// "gdc", "ode-box", "ode-convex", or "gdc:NAME=VALUE[,NAME=VALUE...]" (settings variants, each
-/// field by its name in gdc::Settings). Throws
+/// field by its name in gdc::Settings), any of them followed by "+order=NAME" (RowOrder). Throws
 /// std::invalid_argument naming what is wrong.
 Contender parseContender(const std::string& spec);
 
@@ -50,12 +73,17 @@ std::vector<std::string> settingNames();
 
 // ---- steppers ------------------------------------------------------------------------------------
 struct Stepper {
-    std::string name;  ///< "quick10", "quick20", "quick50", "world"
+    std::string name;  ///< "quick10", "quick20", "quick50", "world", each optionally with "/cfm=X/mu=X/maxc=N"
     bool quick = true;  ///< dWorldQuickStep (else dWorldStep)
     int iterations = 20;
+    double cfm = 1e-10;      ///< the world's CFM (SolverConstants::cfm unless "/cfm=X")
+    double mu = 0.6;         ///< every contact's friction (SolverConstants::mu unless "/mu=X")
+    int contactsAsked = 16;  ///< maxc of every collider call (SolverConstants::contactsAsked unless "/maxc=N")
 };
 std::vector<Stepper> allSteppers();
-Stepper parseStepper(const std::string& name);  ///< throws std::invalid_argument
+/// "quick10" | "quick20" | "quick50" | "world", optionally followed by solver variants
+/// "/cfm=1e-5", "/mu=0.8", "/maxc=4" (any of them, in any order). Throws std::invalid_argument.
+Stepper parseStepper(const std::string& name);
 
 // ---- scenes --------------------------------------------------------------------------------------
 struct SceneSpec {
@@ -68,6 +96,21 @@ struct SceneSpec {
     std::string worldSkipReason; ///< why not, when not
     int defaultSeeds = 50;       ///< seeds of the default mode (scripts/run); the full mode runs ≥ 50 everywhere
     int defaultWorldSeeds = 50;  ///< seeds of the default mode under dWorldStep (big islands cost seconds per run)
+    /// Heaps let go one by one: body k waits, disabled and out of the way, until k × this (s), then
+    /// starts from its place (0: every body starts at once).
+    double releaseInterval = 0.0;
+    int fullSeeds = 50;          ///< seeds of the full mode (cheap scenes run more)
+    /// Such a heap is taken as settled this long (s) after the last body was let go; from then on
+    /// a body's horizontal displacement is its creep (the heap's limits).
+    double settleTime = 0.0;
+    /// Multiplies the start jitter (Jitter) for this scene: the columns use a new user's ±1 cm and
+    /// ±0.1 rad about the vertical (10).
+    double jitterScale = 1.0;
+    /// ODE's auto-disable is never on in this scene, whatever RunOptions::sleep says (the columns:
+    /// a world as a new user makes it; a column that sleeps can no longer fall).
+    bool neverSleeps = false;
+    /// The scene family the overview groups it in ("" for the classic scenes, "column", "heap").
+    std::string family = "";
 };
 /// Every scene, in the report's order.
 const std::vector<SceneSpec>& sceneSpecs();
@@ -91,7 +134,7 @@ struct Jitter {
 };
 
 // ---- failure limits ------------------------------------------------------------------------------
-enum class Failure : int { None = 0, Exploded, Tunnelled, Flung, Drift, Tilt, Drop, Crashed };
+enum class Failure : int { None = 0, Exploded, Tunnelled, Flung, Drift, Tilt, Drop, Crashed, Creep };
 const char* failureName(Failure failure);
 /// One row per limit: its name, which scenes it applies to, and its rule (for the report).
 struct FailureLimit {
@@ -100,11 +143,15 @@ struct FailureLimit {
     const char* rule;
 };
 const std::vector<FailureLimit>& failureLimits();
+/// The gross criterion beside the fine limits (SeedResult::collapsed): the structure fell. Scenes
+/// where every contender crosses the fine limits still tell contenders apart by it.
+const std::vector<FailureLimit>& collapseLimits();
 
 // ---- one run -------------------------------------------------------------------------------------
 struct RunOptions {
     bool sleep = true;           ///< ODE auto-disable on, default thresholds (else off; sleep time emulated)
     double durationScale = 1.0;  ///< multiplies every scene's duration
+    double jitterScale = 1.0;    ///< multiplies the start jitter (Jitter)
     /// An experiment on the order QuickStep meets the rows *across* pairs (docs/algorithm.md, "Order
     /// across pairs"): before each step, every awake body of a joint-connected group but its lowest
     /// is disabled, so that ODE's island walk (depth-first from the first enabled body of the
@@ -120,10 +167,21 @@ struct RunOptions {
 /// group with no awake body is left asleep, as ODE would leave it. Public API only.
 void rootIslandsAtLowest(const std::vector<dBodyID>& bodies);
 
+/// What each contender hands the solver on identical body states (issue 35): runs `reference` free
+/// to `time` (seed `seed`), copies that state into every contender's world, collides once and
+/// writes to `out` (CSV) every contact row in the order dWorldQuickStep meets them (ODE's island
+/// walk: the body list newest first, depth first, each body's joints newest first): the bodies
+/// (−1: static), its row within the pair, position, depth, normal and ODE's first friction
+/// direction (dPlaneSpace of the normal: the contacts set no dContactFDir1).
+void compareContacts(const SceneSpec& scene, const Stepper& stepper, const std::vector<Contender>& contenders,
+                     const Contender& reference, int seed, double time, const RunOptions& options, std::FILE* out);
+
 /// The outcome of one scene × stepper × contender × seed. Plain data (workers share it through memory).
 struct SeedResult {
     int done = 0;              ///< 1 once filled in
     int failure = 0;           ///< a Failure
+    int collapsed = 0;         ///< 1: the structure fell (collapseLimits())
+    double creep = 0;          ///< m, heaps let go one by one: max over bodies of the horizontal move since settling
     double failTime = -1;      ///< s, when the first limit was crossed (−1: none)
     double drift = 0;          ///< m, max over bodies of the horizontal distance from the start at the end
     double maxTilt = 0;        ///< rad, max over bodies and steps of the turn of its up axis since the start

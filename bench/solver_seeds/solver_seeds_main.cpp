@@ -6,7 +6,7 @@
 // Usage: bench_solver_seeds [--quick | --full] [--out DIR] [--scene NAME]... [--stepper NAME]...
 //          [--contender SPEC]... [--no-default-contenders] [--seeds N] [--seeds-for SCENE[:STEPPER]=N]...
 //          [--first-seed N] [--jobs N]
-//          [--no-sleep] [--duration-scale X] [--island-root lowest|as-built] [--cost-states N] [--cost-repetitions N] [--no-cost]
+//          [--no-sleep] [--duration-scale X] [--jitter-scale X] [--island-root lowest|as-built] [--compare-contacts TIME] [--cost-states N] [--cost-repetitions N] [--no-cost]
 //   SPEC: gdc | ode-box | ode-convex | gdc:NAME=VALUE[,NAME=VALUE...] (a gdc::Settings variant)
 // Writes DIR/solver_seeds_runs.csv (one row per run), DIR/solver_seeds_summary.csv (one row per
 // scene × stepper × contender), DIR/solver_seeds_scenes.csv, DIR/solver_seeds_limits.csv and
@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -49,11 +50,13 @@ struct Options {
     int jobs = 0;    // 0: hardware threads
     bool sleep = true;
     double durationScale = 1.0;
+    double jitterScale = 1.0;
     bool rootIslandsAtLowest = false;  // --island-root lowest (RunOptions::rootIslandsAtLowest)
     int costStates = -1;
     int costRepetitions = 3;
     bool cost = true;
     std::map<std::string, int> seedsFor;  // "SCENE" or "SCENE:STEPPER" → seeds (--seeds-for)
+    double compareAt = -1;  // --compare-contacts TIME: the rows each contender hands the solver, on one state
     std::string command;
 };
 
@@ -114,6 +117,8 @@ Options parse(int argc, char** argv) {
             o.rootIslandsAtLowest = root == "lowest";
         }
         else if (a == "--duration-scale") o.durationScale = std::stod(value(i));
+        else if (a == "--jitter-scale") o.jitterScale = std::stod(value(i));
+        else if (a == "--compare-contacts") o.compareAt = std::stod(value(i));
         else if (a == "--cost-states") o.costStates = std::stoi(value(i));
         else if (a == "--cost-repetitions") o.costRepetitions = std::stoi(value(i));
         else if (a == "--no-cost") o.cost = false;
@@ -121,7 +126,7 @@ Options parse(int argc, char** argv) {
             std::cout << "bench_solver_seeds [--quick | --full] [--out DIR] [--scene NAME]... [--stepper NAME]...\n"
                          "  [--contender gdc|ode-box|ode-convex|gdc:NAME=VALUE,...]... [--no-default-contenders]\n"
                          "  [--seeds N] [--seeds-for SCENE[:STEPPER]=N]... [--first-seed N] [--jobs N] [--no-sleep]\n"
-                         "  [--duration-scale X] [--island-root lowest|as-built]\n"
+                         "  [--duration-scale X] [--jitter-scale X] [--island-root lowest|as-built] [--compare-contacts TIME]\n"
                          "  [--cost-states N] [--cost-repetitions N] [--no-cost]\nsettings:";
             for (const std::string& name : ss::settingNames()) std::cout << ' ' << name;
             std::cout << "\nscenes:";
@@ -191,6 +196,7 @@ void runJobs(const std::vector<Job>& jobs, const std::vector<ss::SceneSpec>& sce
                 results[j] = ss::SeedResult();
                 results[j].done = 1;
                 results[j].failure = static_cast<int>(ss::Failure::Crashed);
+                results[j].collapsed = 1;
             }
         }
     }
@@ -236,6 +242,16 @@ int main(int argc, char** argv) {
         }
         if (contenders.empty()) throw std::invalid_argument("no contenders");
         if (o.mode == "quick" && o.durationScale == 1.0) o.durationScale = 0.5;
+        if (o.compareAt >= 0) {
+            // The rows each contender hands the solver on the state of the first contender's run
+            // at that time (first scene, first stepper, --first-seed), as CSV on stdout.
+            ss::RunOptions compareOptions;
+            compareOptions.jitterScale = o.jitterScale;
+            ss::compareContacts(scenes.front(), steppers.front(), contenders, contenders.front(), o.firstSeed, o.compareAt,
+                                compareOptions, stdout);
+            dCloseODE();
+            return 0;
+        }
         const int costStates = o.costStates >= 0 ? o.costStates : (o.mode == "full" ? 8 : o.mode == "quick" ? 0 : 5);
         const int workers = o.jobs > 0 ? o.jobs : std::max(1u, std::thread::hardware_concurrency());
 
@@ -244,7 +260,7 @@ int main(int argc, char** argv) {
             if (o.seedsFor.count(s.name)) return o.seedsFor.at(s.name);
             if (o.seeds > 0) return o.seeds;
             if (o.mode == "quick") return 5;
-            if (o.mode == "full") return 50;
+            if (o.mode == "full") return std::max(50, s.fullSeeds);
             return quickStepper ? s.defaultSeeds : std::min(s.defaultSeeds, s.defaultWorldSeeds);
         };
         auto applies = [](const ss::SceneSpec& s, const ss::Stepper& st, const ss::Contender& c) {
@@ -267,6 +283,7 @@ int main(int argc, char** argv) {
         ss::RunOptions runOptions;
         runOptions.sleep = o.sleep;
         runOptions.durationScale = o.durationScale;
+    runOptions.jitterScale = o.jitterScale;
         runOptions.rootIslandsAtLowest = o.rootIslandsAtLowest;
         std::cerr << "bench_solver_seeds (" << o.mode << "): " << jobs.size() << " runs on " << workers << " processes\n";
         const auto start = std::chrono::steady_clock::now();
@@ -362,11 +379,12 @@ int main(int argc, char** argv) {
         }
 
         // ---- files ----
+        std::filesystem::create_directories(o.out);
         const std::string prefix = o.out + "/solver_seeds_";
         {
             std::ofstream f(prefix + "runs.csv");
             f << "scene,stepper,contender,seed,failed,failure,fail_time,drift,max_tilt,contacts_per_step,collision_ms,"
-                 "solver_ms,sleep_time,asleep_at_end,messages,lcp_errors,invalid_contacts,steps,bodies\n";
+                 "solver_ms,sleep_time,asleep_at_end,messages,lcp_errors,invalid_contacts,steps,bodies,collapsed,creep\n";
             f << std::setprecision(6);
             for (std::size_t j = 0; j < jobs.size(); ++j) {
                 const ss::SeedResult& r = results[j];
@@ -374,7 +392,7 @@ int main(int argc, char** argv) {
                   << ',' << jobs[j].seed << ',' << (r.failure != 0) << ',' << ss::failureName(static_cast<ss::Failure>(r.failure)) << ','
                   << r.failTime << ',' << r.drift << ',' << r.maxTilt << ',' << r.contactsPerStep << ',' << r.collisionMs << ','
                   << r.solverMs << ',' << r.sleepTime << ',' << r.asleepAtEnd << ',' << r.messages << ',' << r.lcpErrors << ','
-                  << r.invalidContacts << ',' << r.steps << ',' << r.bodies << '\n';
+                  << r.invalidContacts << ',' << r.steps << ',' << r.bodies << ',' << r.collapsed << ',' << r.creep << '\n';
             }
             if (!f) throw std::runtime_error("cannot write " + prefix + "runs.csv");
         }
@@ -383,16 +401,17 @@ int main(int argc, char** argv) {
             f << "scene,stepper,contender,seeds,failed,fail_fraction,fail_low95,fail_high95,failures,drift_p50,drift_p90,"
                  "drift_max,contacts_per_step,collision_ms,solver_ms,slept_fraction,sleep_p50,asleep_at_end,messages,"
                  "lcp_errors,invalid_contacts,cost_collision_ms,cost_solver_ms,cost_whole_ms,cost_contacts,best_ode,"
-                 "ratio_to_best_ode\n";
+                 "ratio_to_best_ode,collapsed,collapse_fraction,collapse_low95,collapse_high95\n";
             f << std::setprecision(6);
             for (auto& [key, a] : aggregates) {
                 const auto [si, ti, ci] = key;
                 const int n = static_cast<int>(a.runs.size());
-                int failed = 0, slept = 0, messages = 0, lcp = 0, invalid = 0;
+                int failed = 0, slept = 0, messages = 0, lcp = 0, invalid = 0, collapsed = 0;
                 std::map<std::string, int> reasons;
                 std::vector<double> drift, sleep;
                 double contacts = 0, collision = 0, solver = 0, asleep = 0;
                 for (const ss::SeedResult& r : a.runs) {
+                    collapsed += r.collapsed;
                     if (r.failure) {
                         ++failed;
                         ++reasons[ss::failureName(static_cast<ss::Failure>(r.failure))];
@@ -432,6 +451,8 @@ int main(int argc, char** argv) {
                 } else {
                     f << ",,,,,";
                 }
+                const auto [collapseLow, collapseHigh] = wilson(collapsed, n);
+                f << ',' << collapsed << ',' << static_cast<double>(collapsed) / n << ',' << collapseLow << ',' << collapseHigh;
                 f << '\n';
             }
             if (!f) throw std::runtime_error("cannot write " + prefix + "summary.csv");
@@ -445,9 +466,11 @@ int main(int argc, char** argv) {
         }
         {
             std::ofstream f(prefix + "limits.csv");
-            f << "failure,scenes,rule\n";
+            f << "failure,scenes,rule,kind\n";
             for (const ss::FailureLimit& l : ss::failureLimits())
-                f << ss::failureName(l.failure) << ',' << l.scenes << ',' << csvText(l.rule) << '\n';
+                f << ss::failureName(l.failure) << ',' << l.scenes << ',' << csvText(l.rule) << ",fine\n";
+            for (const ss::FailureLimit& l : ss::collapseLimits())
+                f << ss::failureName(l.failure) << ',' << l.scenes << ',' << csvText(l.rule) << ",collapse\n";
         }
         {
             std::ofstream f(prefix + "command.txt");

@@ -30,6 +30,18 @@ BASE_COLOURS = {"gdc": "tab:blue", "ode-box": "tab:green", "ode-convex": "tab:re
 VARIANT_COLOURS = ["tab:purple", "tab:orange", "tab:brown", "tab:pink", "tab:olive", "tab:cyan", "tab:gray"]
 
 
+def stepper_label(name):
+    """A stepper's label; a solver variant (bench_solver_seeds' "quick20/cfm=1e-5/mu=0.8/maxc=4") keeps its suffix."""
+    base, _, variant = name.partition("/")
+    return STEPPER_LABEL.get(base, base) + (f" ({variant.replace('/', ', ')})" if variant else "")
+
+
+def steppers_in(rows):
+    """The steppers present, the plain ones in STEPPER_ORDER, then their variants by name."""
+    names = {r["stepper"] for r in rows}
+    return sorted(names, key=lambda n: (STEPPER_ORDER.index(n.partition("/")[0]) if n.partition("/")[0] in STEPPER_ORDER else 9, n))
+
+
 def contender_order(name):
     base = ["gdc", "ode-box", "ode-convex"]
     return (base.index(name) if name in base else len(base), name)
@@ -74,9 +86,12 @@ def plot(rows, scenes, results):
             # gdcontact's marker is larger and drawn first, so that a contender on the same spot shows on top of it
             # (as scenes.py draws coinciding lines).
             big = r["contender"] == "gdc"
-            ax.errorbar([cost], [standing], yerr=[[standing - low], [high - standing]], fmt=STEPPER_MARKER.get(r["stepper"], "o"),
+            ax.errorbar([cost], [standing], yerr=[[standing - low], [high - standing]], fmt=STEPPER_MARKER.get(r["stepper"].partition("/")[0], "o"),
                         color=colours[r["contender"]], markersize=10 if big else 6, capsize=2, elinewidth=0.8, alpha=0.85,
                         markeredgecolor="black", markeredgewidth=0.5, zorder=2 if big else 3)
+            if r.get("collapse_fraction"):  # the gross criterion: seeds not collapsed, a hollow marker of the same colour
+                ax.plot([cost], [1.0 - number(r["collapse_fraction"])], STEPPER_MARKER.get(r["stepper"].partition("/")[0], "o"),
+                        markerfacecolor="none", markeredgecolor=colours[r["contender"]], markersize=12 if big else 8, zorder=4)
         ax.set_xscale("log")
         # Ticks at 1, 2 and 5 of each decade, labelled plainly; no labels on the minor ticks (they overlapped).
         plots.plain_log_ticks(ax.xaxis)
@@ -94,7 +109,8 @@ def plot(rows, scenes, results):
     handles += [plt.Line2D([], [], color="black", marker=STEPPER_MARKER[s], linestyle="", markersize=7, markerfacecolor="white",
                            label=STEPPER_LABEL[s]) for s in STEPPER_ORDER if any(r["stepper"] == s for r in rows)]
     figure.legend(handles=handles, loc="lower center", ncol=min(len(handles), 7), frameon=False, fontsize=9)
-    figure.suptitle("Stability over seeds against the cost of a step (bars: 95 % Wilson interval)", fontsize=11)
+    figure.suptitle("Stability over seeds against the cost of a step (filled: within the fine limits, bars: 95 % Wilson "
+                    "interval; hollow: not collapsed)", fontsize=11)
     height = 3.3 * lines + 1.2
     figure.tight_layout(rect=(0, 0.75 / height, 1, 1 - 0.45 / height))  # room for the legend and the title
     return plots.save_figure(figure, os.path.join(results, "solver_seeds.png"), dpi=100, tight=False)
@@ -113,7 +129,7 @@ def sleep_lines(results, scenes):
         times[(r["scene"], r["stepper"], r["contender"], r["seed"])] = t if t >= 0 else math.inf
     lines = []
     for sc in scenes:
-        for stepper in STEPPER_ORDER:
+        for stepper in sorted({k[1] for k in times}, key=lambda n: (STEPPER_ORDER.index(n.partition("/")[0]) if n.partition("/")[0] in STEPPER_ORDER else 9, n)):
             seeds = [k[3] for k in times if k[:3] == (sc["scene"], stepper, "gdc") and (sc["scene"], stepper, "ode-box", k[3]) in times]
             if not seeds:
                 continue
@@ -129,7 +145,7 @@ def sleep_lines(results, scenes):
             def median(values):
                 m = stats.median(values)
                 return "never" if math.isinf(m) else fmt(m, 2)
-            lines.append([sc["scene"], STEPPER_LABEL[stepper], str(len(seeds)),
+            lines.append([sc["scene"], stepper_label(stepper), str(len(seeds)),
                           f"{sum(not math.isinf(x) for x in g)} / {sum(not math.isinf(x) for x in b)}",
                           f"{median(g)} / {median(b)}", f"{later} / {sooner} / {len(seeds) - n}", fmt(p, 2)])
     if not lines:
@@ -165,7 +181,10 @@ def section(results, plot_link, level, reproduce=None):
                + (f". Reproduce: `{reproduce}`." if reproduce else "") + "\n")
     out.append("Failure limits (one table, `failureLimits()` in bench/solver_seeds/solver_seeds.cpp); a run fails when "
                "a limit is crossed and still crossed at the end of the run, or at once when it explodes:\n")
-    out.extend(table_lines(["failure", "scenes", "rule"], [[l["failure"], l["scenes"], l["rule"]] for l in limits]))
+    out.extend(table_lines(["failure", "scenes", "rule", "kind"],
+                           [[l["failure"], l["scenes"], l["rule"], l.get("kind", "fine")] for l in limits]))
+    out.append("\nKind *fine*: the failure limits; *collapse*: the gross criterion beside them (the structure fell), "
+               "so that scenes where every contender crosses the fine limits still tell contenders apart.\n")
     out.append("")
     out.append("Scenes (simulated seconds per run; seeds per stepper; where `dWorldStep` is not run, why):\n")
     out.extend(table_lines(["scene", "what", "s", "seeds (QuickStep)", "seeds (dWorldStep)"],
@@ -197,21 +216,27 @@ def section(results, plot_link, level, reproduce=None):
     paired = {}
     runs_path = os.path.join(results, "solver_seeds_runs.csv")
     if os.path.exists(runs_path):
-        failed = {(r["scene"], r["stepper"], r["contender"], r["seed"]): r["failed"] == "1" for r in data.read_csv(runs_path)}
+        runs = data.read_csv(runs_path)
+        failed = {(r["scene"], r["stepper"], r["contender"], r["seed"]): r["failed"] == "1" for r in runs}
+        collapsed = {(r["scene"], r["stepper"], r["contender"], r["seed"]): r.get("collapsed") == "1" for r in runs}
         for (scene, stepper, contender, seed), gdc_failed in failed.items():
             if contender != "gdc" or (scene, stepper, "ode-box", seed) not in failed:
                 continue
             box_failed = failed[(scene, stepper, "ode-box", seed)]
-            counts = paired.setdefault((scene, stepper), [0, 0])
+            gdc_fell, box_fell = collapsed[(scene, stepper, "gdc", seed)], collapsed[(scene, stepper, "ode-box", seed)]
+            counts = paired.setdefault((scene, stepper), [0, 0, 0, 0])
             counts[0] += gdc_failed and not box_failed
             counts[1] += box_failed and not gdc_failed
-    out.append("Overview — per scene and stepper, each contender's **fraction of seeds failing** and, in brackets, its "
-               "**whole step on identical states ÷ the best ODE option** (named in the next column); the last column "
-               "pairs the seeds of gdcontact and ODE dBox: seeds where gdcontact fails and dBox stands / where dBox "
-               "fails and gdcontact stands:\n")
+            counts[2] += gdc_fell and not box_fell
+            counts[3] += box_fell and not gdc_fell
+    out.append("Overview — per scene and stepper, each contender's **fraction of seeds failing · collapsed** (the fine "
+               "limits · the gross criterion) and, in brackets, its "
+               "**whole step on identical states ÷ the best ODE option** (named in the next column); the last two columns "
+               "pair the seeds of gdcontact and ODE dBox: seeds where gdcontact fails and dBox stands / where dBox "
+               "fails and gdcontact stands, and the same for collapses, each with the two-sided sign test's p:\n")
     overview = []
     for sc in scenes:
-        for stepper in STEPPER_ORDER:
+        for stepper in steppers_in(rows):
             present = [index.get((sc["scene"], stepper, c)) for c in contenders]
             if not any(present):
                 continue
@@ -221,12 +246,15 @@ def section(results, plot_link, level, reproduce=None):
                     cells.append("–")
                     continue
                 ratio = number(r["ratio_to_best_ode"])
-                cells.append(f"{fmt(number(r['fail_fraction']), 2)}" + (f" ({fmt(ratio, 2)}×)" if not math.isnan(ratio) else ""))
+                fell = f" · {fmt(number(r['collapse_fraction']), 2)}" if r.get("collapse_fraction") else ""
+                cells.append(f"{fmt(number(r['fail_fraction']), 2)}{fell}" + (f" ({fmt(ratio, 2)}×)" if not math.isnan(ratio) else ""))
                 best = best or contender_label(r["best_ode"]) if r["best_ode"] else best
             pair = paired.get((sc["scene"], stepper))
-            overview.append([sc["scene"], STEPPER_LABEL[stepper]] + cells + [best, f"{pair[0]} / {pair[1]}" if pair else "–"])
+            overview.append([sc["scene"], stepper_label(stepper)] + cells + [best]
+                            + ([f"{pair[0]} / {pair[1]} (p {fmt(stats.sign_test(pair[0], pair[1]), 2)})",
+                                f"{pair[2]} / {pair[3]} (p {fmt(stats.sign_test(pair[2], pair[3]), 2)})"] if pair else ["–", "–"]))
     out.extend(table_lines(["scene", "stepper"] + [contender_label(c) for c in contenders]
-                           + ["best ODE option", "gdc-only / dBox-only failures"], overview))
+                           + ["best ODE option", "gdc-only / dBox-only failures", "gdc-only / dBox-only collapses"], overview))
     out.append("")
     out.extend(sleep_lines(results, scenes))
     out.append("How to read the 20-stack and the timings: docs/benchmarks.md, after this section.\n")
@@ -241,8 +269,8 @@ def section(results, plot_link, level, reproduce=None):
             continue
         out.append(f"{h}# {name}: {s['description']}\n")
         table_rows = []
-        scene_rows = sorted(by_scene[name], key=lambda r: (STEPPER_ORDER.index(r["stepper"]) if r["stepper"] in STEPPER_ORDER
-                                                           else 9, contender_order(r["contender"])))
+        order = steppers_in(rows)
+        scene_rows = sorted(by_scene[name], key=lambda r: (order.index(r["stepper"]), contender_order(r["contender"])))
         for r in scene_rows:
             fail = (f"{fmt(number(r['fail_fraction']), 2)} [{fmt(number(r['fail_low95']), 2)}, {fmt(number(r['fail_high95']), 2)}]"
                     f" of {r['seeds']}" + (f" ({r['failures']})" if r["failures"] else ""))
@@ -254,10 +282,12 @@ def section(results, plot_link, level, reproduce=None):
                                                        f"{fmt(number(r['cost_solver_ms']), 2)} = {fmt(cost, 3)}")
             ratio = number(r["ratio_to_best_ode"])
             best = f"{fmt(ratio, 2)}× {r['best_ode']}" if not math.isnan(ratio) else "–"
-            table_rows.append([STEPPER_LABEL.get(r["stepper"], r["stepper"]), contender_label(r["contender"]), fail, drift,
+            fell = (f"{fmt(number(r['collapse_fraction']), 2)} [{fmt(number(r['collapse_low95']), 2)}, {fmt(number(r['collapse_high95']), 2)}]"
+                    if r.get("collapsed") else "–")
+            table_rows.append([stepper_label(r["stepper"]), contender_label(r["contender"]), fail, fell, drift,
                                fmt(number(r["contacts_per_step"]), 3), fmt(number(r["collision_ms"]), 2),
                                fmt(number(r["solver_ms"]), 2), asleep, msgs, identical, best])
-        out.extend(table_lines(["stepper", "contender", "fail", "drift p50 / p90 / max", "contacts", "coll. ms",
+        out.extend(table_lines(["stepper", "contender", "fail", "collapsed", "drift p50 / p90 / max", "contacts", "coll. ms",
                                 "solver ms", "asleep", "msgs", "identical states: coll. + solver ms", "÷ best ODE"],
                                table_rows))
         out.append("")
