@@ -82,7 +82,7 @@ TEST_CASE("a resting face pair's contact depths lie on one plane (composites, ge
     CHECK(largestMiss < 1e-12);
     // The deepest is the exact one the certificate keeps (5.885e-7 m), not the cast's 5.962e-7 m.
     double deepest = 0.0;
-    for (int i = 0; i < count; ++i) deepest = std::max(deepest, contacts[static_cast<std::size_t>(i)].depth);
+    for (int i = 0; i < count; ++i) deepest = std::max(deepest, static_cast<double>(contacts[static_cast<std::size_t>(i)].depth));
     CHECK(deepest == Approx(5.8853e-7).margin(1e-11));
 
     dGeomDestroy(toothGeom);
