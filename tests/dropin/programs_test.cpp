@@ -77,6 +77,19 @@ TEST_CASE("convexes and boxes on a trimesh and a heightfield", "[dropin]") {
 
 TEST_CASE("a program that only adds install(): plain dCreateConvex geoms work, with one message", "[dropin]") {
     const Outcome outcome = run(&runInstallOnly);
-    checkRanClean(outcome, 500);
     CHECK(dropin::count(outcome.text, "plain dCreateConvex") == 1);
+    // An ODE that does not export its own convex colliders (a static libode) cannot give the plain
+    // convexes' pairs ODE's contacts after install(): the documented degradation (docs/ode.md) is
+    // no contacts for them and one message — never an abort or an invalid contact; the convexes
+    // then sink through the ground, so only "fallen" is not checked.
+    if (dropin::count(outcome.text, "does not export its own convex colliders") == 1) {
+        INFO(outcome.text);
+        REQUIRE(outcome.status == 0);
+        CHECK(outcome.steps == 500);
+        CHECK(outcome.contacts > 100);  // the boxes' pairs still have gdcontact's
+        CHECK(outcome.invalid == 0);
+        CHECK(outcome.text.find("ODE INTERNAL ERROR") == std::string::npos);
+        return;
+    }
+    checkRanClean(outcome, 500);
 }

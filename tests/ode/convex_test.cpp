@@ -3,6 +3,7 @@
 #include <gdcontact/ode.hpp>
 
 #include "child_process.hpp"
+#include "ode/ode_internals.hpp"
 #include "ode_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -248,7 +249,11 @@ struct CapturedMessages {
 };
 }  // namespace
 
-TEST_CASE("a plain dCreateConvex geom after install() gets ODE's own contacts, with one message",
+// What a plain dCreateConvex geom gets after install() depends on the ODE linked (docs/ode.md,
+// "Plain dCreateConvex geoms"): ODE's own answer where its collider is exported (a shared libode),
+// nothing where ODE's own collider gives nothing (convex-box without libccd), and otherwise no
+// contacts with one message saying why — never another answer than ODE's.
+TEST_CASE("a plain dCreateConvex geom after install() gets ODE's own contacts or, where ODE's collider is out of reach, none, with one message",
           "[ode][convex]") {
     OdeCube cube;
     // ODE's answers without gdcontact, for the same poses.
@@ -272,10 +277,28 @@ TEST_CASE("a plain dCreateConvex geom after install() gets ODE's own contacts, w
     const auto reference = run(false);
     CapturedMessages captured;
     const auto adapted = run(true);
+    const gdc::ode::detail::OdeColliders& found = gdc::ode::detail::odeColliders();
+    INFO("ODE " << dGetConfiguration() << "; " << gdc::ode::detail::describeOdeColliders());
+    const gdc::ode::detail::OdeCollider* colliderOf[] = {&found.convexBox,   &found.convexBox,
+                                                         &found.convexPlane, &found.convexPlane,
+                                                         &found.convexConvex, &found.convexConvex};
     REQUIRE(adapted.size() == reference.size());
-    int total = 0;
+    bool unreachable = false;
     for (std::size_t pair = 0; pair < reference.size(); ++pair) {
         INFO("pair " << pair);
+        using gdc::ode::detail::OdeFallback;
+        const OdeFallback fallback = colliderOf[pair]->fallback;
+        if (fallback == OdeFallback::OdeGivesNone) {  // ODE's collider gives nothing: so does the adapter
+            CHECK(reference[pair].empty());
+            CHECK(adapted[pair].empty());
+            continue;
+        }
+        CHECK(!reference[pair].empty());  // every pair overlaps, and ODE's own collider says so
+        if (fallback == OdeFallback::Unreachable) {  // never another answer than ODE's: none
+            CHECK(adapted[pair].empty());
+            unreachable = true;
+            continue;
+        }
         REQUIRE(adapted[pair].size() == reference[pair].size());
         for (std::size_t k = 0; k < reference[pair].size(); ++k) {
             const dContactGeom& want = reference[pair][k];
@@ -283,14 +306,13 @@ TEST_CASE("a plain dCreateConvex geom after install() gets ODE's own contacts, w
             CHECK((toVec(got.normal) - toVec(want.normal)).norm() < 1e-12);
             CHECK((toVec(got.pos) - toVec(want.pos)).norm() < 1e-12);
             CHECK(got.depth == Approx(want.depth).margin(1e-12));
-            CHECK(toVec(got.normal).norm() == Approx(1.0));
+            CHECK(toVec(got.normal).norm() == Approx(1.0).epsilon(1e-5));
             CHECK(got.depth >= 0);
-            ++total;
         }
     }
-    CHECK(total >= 6);  // every pair overlaps
     CHECK(occurrences(messages, "plain dCreateConvex") == 1);  // said once, not per pair
     CHECK_THAT(messages, Catch::Contains("gdc::ode::createConvex"));
+    CHECK(occurrences(messages, "does not export its own convex colliders") == (unreachable ? 1 : 0));
 }
 
 TEST_CASE("dGeomSetConvex on a createConvex geom is seen: ODE's collider takes over, with a message naming the fix",
