@@ -7,7 +7,8 @@
 #   gdcontact: ODE 0.16.6 (<prefix>), double precision, shared, libccd: off (ode-config.cmake)
 # What gdcontact cannot serve stops here, naming what was found and what is needed: no ODE, an ODE
 # older than 0.16.2, headers of one ODE and ode.pc of another, a precision that is neither.
-# Sets GDCONTACT_ODE_VERSION, GDCONTACT_ODE_PRECISION (double|single).
+# Sets GDCONTACT_ODE_VERSION, GDCONTACT_ODE_PRECISION (double|single) and GDCONTACT_ODE_PC_PRECISION
+# (dDOUBLE|dSINGLE, for the installed CMake package's check of the ODE a consumer finds).
 find_package(PkgConfig QUIET)
 if(NOT PKG_CONFIG_FOUND)
   message(FATAL_ERROR "gdcontact needs pkg-config to find ODE: install pkg-config (apt-get install pkg-config)")
@@ -144,5 +145,10 @@ if(_gdcontact_ode_kind STREQUAL "static")
 endif()
 
 set(GDCONTACT_ODE_VERSION "${ODE_VERSION}")
+if(GDCONTACT_ODE_PRECISION STREQUAL "double")  # as ode.pc's precision variable says it
+  set(GDCONTACT_ODE_PC_PRECISION dDOUBLE)
+else()
+  set(GDCONTACT_ODE_PC_PRECISION dSINGLE)
+endif()
 message(STATUS "gdcontact: ODE ${ODE_VERSION} (${_gdcontact_ode_where}), ${GDCONTACT_ODE_PRECISION} "
   "precision, ${_gdcontact_ode_kind}, libccd: ${_gdcontact_ode_libccd}")
