@@ -91,7 +91,7 @@ std::atomic<bool> saidPlainConvex{false}, saidSetConvex{false}, saidNoOdeCollide
 [[gnu::cold, gnu::noinline]] void reportPlainConvex() {
     sayOnce(saidPlainConvex,
             "gdcontact: a dConvex made with plain dCreateConvex is collided by ODE's own convex collider "
-            "(libccd: one contact per pair). ODE 0.16.2 gives no access to a dConvex's data, so gdcontact "
+            "where this ODE lets it be reached (docs/ode.md). ODE gives no access to a dConvex's data, so gdcontact "
             "cannot collide it; for gdcontact's contacts create it with gdc::ode::createConvex(space, planes, "
             "planeCount, points, pointCount, polygons) — the same arguments as dCreateConvex. (Said once.)");
 }

@@ -4,6 +4,7 @@
 
 #include "child_process.hpp"
 #include "ode/ode_internals.hpp"
+#include "ode_precision.hpp"
 #include "ode_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -299,13 +300,25 @@ TEST_CASE("a plain dCreateConvex geom after install() gets ODE's own contacts or
             unreachable = true;
             continue;
         }
-        REQUIRE(adapted[pair].size() == reference[pair].size());
-        for (std::size_t k = 0; k < reference[pair].size(); ++k) {
-            const dContactGeom& want = reference[pair][k];
-            const dContactGeom& got = adapted[pair][k];
-            CHECK((toVec(got.normal) - toVec(want.normal)).norm() < 1e-12);
-            CHECK((toVec(got.pos) - toVec(want.pos)).norm() < 1e-12);
-            CHECK(got.depth == Approx(want.depth).margin(1e-12));
+        // ODE's answer for (a, b) — or, for two convexes, its answer for (b, a) mirrored: ODE calls
+        // a same-class override as fn(b, a) for dCollide(a, b), and ODE's own SAT convex–convex
+        // collider (ODE without libccd) is not symmetric, so which of the two the adapter got
+        // depends on how it was reached. Either is ODE's own.
+        auto matches = [&](const std::vector<dContactGeom>& want, double sign) {
+            if (adapted[pair].size() != want.size()) return false;
+            for (std::size_t k = 0; k < want.size(); ++k) {
+                const dContactGeom& got = adapted[pair][k];
+                const double tolerance = realTolerance(1e-12);  // the normal renormalised: float's rounding
+                if (!((toVec(got.normal) - sign * toVec(want[k].normal)).norm() < tolerance &&
+                      (toVec(got.pos) - toVec(want[k].pos)).norm() < tolerance &&
+                      std::abs(got.depth - want[k].depth) < tolerance))
+                    return false;
+            }
+            return true;
+        };
+        const bool twoConvexes = pair >= 4;
+        CHECK((matches(reference[pair], 1.0) || (twoConvexes && matches(reference[pair ^ 1], -1.0))));
+        for (const dContactGeom& got : adapted[pair]) {
             CHECK(toVec(got.normal).norm() == Approx(1.0).epsilon(1e-5));
             CHECK(got.depth >= 0);
         }
