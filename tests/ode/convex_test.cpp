@@ -134,13 +134,13 @@ TEST_CASE("ODE's own sphere and ray colliders see the hull of a createConvex geo
     dGeomSetPosition(sphere, 0, 0, 0.65);  // 0.05 into the top face
     const auto contacts = collideThroughOde(sphere, convex, 4);
     REQUIRE(contacts.size() >= 1);
-    CHECK(contacts[0].depth == Approx(0.05).margin(1e-9));
-    CHECK(toVec(contacts[0].normal).z() == Approx(1.0).margin(1e-9));
+    CHECK(contacts[0].depth == Approx(0.05).margin(realTolerance(1e-9)));
+    CHECK(toVec(contacts[0].normal).z() == Approx(1.0).margin(realTolerance(1e-9)));
     dGeomID ray = dCreateRay(0, 10);
     dGeomRaySet(ray, 0.1, 0.2, 5, 0, 0, -1);
     const auto hits = collideThroughOde(ray, convex, 1);
     REQUIRE(hits.size() == 1);
-    CHECK(hits[0].depth == Approx(4.5).margin(1e-9));  // distance from the ray start to the top face
+    CHECK(hits[0].depth == Approx(4.5).margin(realTolerance(1e-9)));  // distance from the ray start to the top face
     for (dGeomID geom : {convex, sphere, ray}) dGeomDestroy(geom);
 }
 
@@ -345,8 +345,12 @@ TEST_CASE("dGeomSetConvex on a createConvex geom is seen: ODE's collider takes o
     // moves a body's geoms), and that is when gdcontact sees the change.
     dGeomSetPosition(geom, 0, 0, 0.24);
     const auto after = collideThroughOde(geom, ground, 8);
-    REQUIRE(!after.empty());
-    for (const dContactGeom& contact : after) CHECK(contact.depth == Approx(0.01).margin(1e-9));
+    // ODE's convex–plane collider where this ODE lets it be reached; else none (docs/ode.md).
+    if (gdc::ode::detail::odeColliders().convexPlane.fallback == gdc::ode::detail::OdeFallback::OdeCollider)
+        REQUIRE(!after.empty());
+    else
+        CHECK(after.empty());
+    for (const dContactGeom& contact : after) CHECK(contact.depth == Approx(0.01).margin(realTolerance(1e-9)));
     CHECK(occurrences(messages, "dGeomSetConvex (its bounding box") == 1);
     CHECK_THAT(messages, Catch::Contains("gdc::ode::createConvex"));
     dGeomDestroy(geom);
@@ -399,8 +403,8 @@ TEST_CASE("polytopeOf and poseOf describe box and convex geoms, offsets included
     dGeomSetBody(box, body);
     dGeomSetOffsetPosition(box, 1, 0, 0);
     const Pose pose = gdc::ode::poseOf(box);
-    CHECK((pose.position - (Vec3(1, 2, 3) + bodyRotation * Vec3(1, 0, 0))).norm() < 1e-12);
-    CHECK((pose.rotation - bodyRotation).norm() < 1e-12);
+    CHECK((pose.position - (Vec3(1, 2, 3) + bodyRotation * Vec3(1, 0, 0))).norm() < realTolerance(1e-12));
+    CHECK((pose.rotation - bodyRotation).norm() < realTolerance(1e-12));
     for (dGeomID geom : {box, sphere, plane}) dGeomDestroy(geom);
     dWorldDestroy(world);
 }
