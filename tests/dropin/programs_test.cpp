@@ -112,7 +112,7 @@ TEST_CASE("convexes and boxes on a trimesh and a heightfield", "[dropin]") {
 
 TEST_CASE("a program that only adds install(): plain dCreateConvex geoms work, with one message", "[dropin]") {
     const Outcome outcome = run(&runInstallOnly);
-    CHECK(dropin::count(outcome.text, "plain dCreateConvex") == 1);
+    CHECK(dropin::count(outcome.text, "made with plain dCreateConvex") == 1);
     // An ODE that does not export its own convex colliders (a static libode) cannot give the plain
     // convexes' pairs ODE's contacts after install(): the documented degradation (docs/ode.md) is
     // no contacts for them and one message — never an abort or an invalid contact; the convexes

@@ -323,7 +323,7 @@ TEST_CASE("a plain dCreateConvex geom after install() gets ODE's own contacts or
             CHECK(got.depth >= 0);
         }
     }
-    CHECK(occurrences(messages, "plain dCreateConvex") == 1);  // said once, not per pair
+    CHECK(occurrences(messages, "made with plain dCreateConvex") == 1);  // said once, not per pair
     CHECK_THAT(messages, Catch::Contains("gdc::ode::createConvex"));
     CHECK(occurrences(messages, "does not export its own convex colliders") == (unreachable ? 1 : 0));
 }
