@@ -80,6 +80,7 @@ bool odeCollidesConvexWithTrimesh() {
     static const dTriIndex indices[] = {0, 1, 2, 0, 2, 3};
     dTriMeshDataID data = dGeomTriMeshDataCreate();
     dGeomTriMeshDataBuildSingle(data, vertices, 3 * sizeof(dReal), 4, indices, 6, 3 * sizeof(dTriIndex));
+    dGeomTriMeshDataPreprocess2(data, 1U << dTRIDATAPREPROCESS_BUILD_FACE_ANGLES, nullptr);  // as terrain.cpp
     dGeomID mesh = dCreateTriMesh(0, data, nullptr, nullptr, nullptr);
     const dReal corners[] = {-0.5, -0.5, -0.5, 0.5, -0.5, -0.5, -0.5, 0.5, -0.5, 0.5, 0.5, -0.5,
                              -0.5, -0.5, 0.5,  0.5, -0.5, 0.5,  -0.5, 0.5, 0.5,  0.5, 0.5, 0.5};
