@@ -30,5 +30,10 @@ inline const Polytope& borrowedBoxPolytope(ThreadCache& cache, const double* len
     }
     return borrowedBoxPolytopeSlow(cache, lengths);
 }
+/// The same for a single-precision ODE's lengths (dReal is float): converted to double first.
+inline const Polytope& borrowedBoxPolytope(ThreadCache& cache, const float* lengths) {
+    const double asDouble[3] = {lengths[0], lengths[1], lengths[2]};
+    return borrowedBoxPolytope(cache, asDouble);
+}
 
 }  // namespace gdc::ode::detail

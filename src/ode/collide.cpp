@@ -8,6 +8,7 @@
 #include "convex_registry.hpp"
 #include "installed_settings.hpp"
 #include "ode_internals.hpp"
+#include "ode_real.hpp"
 #include "thread_cache.hpp"
 #include "write_contacts.hpp"
 #include "contact/box_box.hpp"
@@ -28,20 +29,12 @@
 namespace gdc::ode {
 namespace {
 
+// ODE's geom classes by number (its enum, dSphereClass = 0 … dHeightfieldClass).
 const char* className(int geomClass) {
-    switch (geomClass) {
-        case dSphereClass: return "sphere";
-        case dBoxClass: return "box";
-        case dCapsuleClass: return "capsule";
-        case dCylinderClass: return "cylinder";
-        case dPlaneClass: return "plane";
-        case dRayClass: return "ray";
-        case dConvexClass: return "convex";
-        case dGeomTransformClass: return "geom transform";
-        case dTriMeshClass: return "trimesh";
-        case dHeightfieldClass: return "heightfield";
-        default: return "unsupported class";
-    }
+    static const char* const names[] = {"sphere", "box",    "capsule",        "cylinder", "plane",
+                                        "ray",    "convex", "geom transform", "trimesh",  "heightfield"};
+    static_assert(dHeightfieldClass == 9, "ODE's geom class numbers");
+    return geomClass >= 0 && geomClass <= dHeightfieldClass ? names[geomClass] : "unsupported class";
 }
 
 std::shared_ptr<const Polytope> boxPolytopeOf(dGeomID box) {
@@ -396,7 +389,10 @@ void install(const Settings& settings) {
     if (!detail::odeIsInitialized())
         throw InvalidInput("gdc::ode::install() was called while ODE is not initialised: call dInitODE2(0) "
                            "first (and again after dCloseODE()), then install()");
+    if (const std::string problem = detail::odeConfigurationProblem(); !problem.empty())
+        throw InvalidInput("gdc::ode::install(): " + problem);
     gdc::validate(settings);
+    detail::captureOdeColliders();  // before the overrides below replace ODE's colliders
     // A new session (or new settings) says its one-time messages again.
     detail::resetConvexMessages();
     detail::setInstalledSettings(settings);

@@ -4,6 +4,7 @@
 
 #include "convex_registry.hpp"
 #include "ode_internals.hpp"
+#include "ode_real.hpp"
 
 #include <atomic>
 #include <cmath>
@@ -53,7 +54,8 @@ bool matchesXExtent(const Polytope& hull, const Pose& pose, dGeomID geom, int br
     hint.lower = hull.supportVertex(-direction, hint.lower >= 0 ? 0 : bruteForceLimit, hint.lower);
     const double upper = direction.dot(hull.vertices()[hint.upper]) + pose.position.x();
     const double lower = direction.dot(hull.vertices()[hint.lower]) + pose.position.x();
-    const double tolerance = 1e-9 * (hull.radius() + pose.position.norm()) + 1e-300;
+    // ODE computed the box in dReal: a single-precision one is off by float rounding (ode_real.hpp).
+    const double tolerance = detail::inputRelativeTolerance(1e-9) * (hull.radius() + pose.position.norm()) + 1e-300;
     const bool matches = std::abs(static_cast<double>(box[0]) - lower) <= tolerance &&
                          std::abs(static_cast<double>(box[1]) - upper) <= tolerance;
     if (matches) {
@@ -69,7 +71,7 @@ bool matchesXExtent(const Polytope& hull, const Pose& pose, dGeomID geom, int br
 [[gnu::cold, gnu::noinline]] void reportPlainConvex() {
     sayOnce(saidPlainConvex,
             "gdcontact: a dConvex made with plain dCreateConvex is collided by ODE's own convex collider "
-            "(libccd: one contact per pair). ODE 0.16.2 gives no access to a dConvex's data, so gdcontact "
+            "where this ODE lets it be reached (docs/ode.md). ODE gives no access to a dConvex's data, so gdcontact "
             "cannot collide it; for gdcontact's contacts create it with gdc::ode::createConvex(space, planes, "
             "planeCount, points, pointCount, polygons) — the same arguments as dCreateConvex. (Said once.)");
 }
@@ -82,19 +84,23 @@ bool matchesXExtent(const Polytope& hull, const Pose& pose, dGeomID geom, int br
 int collideWithOde(dGeomID o1, int class1, dGeomID o2, int class2, int maxContacts, dContactGeom* contact,
                    int skip) {
     const detail::OdeColliders& ode = detail::odeColliders();
-    dColliderFn* function = nullptr;
+    const detail::OdeCollider* collider = nullptr;
     bool reverse = false;
     if (class1 == dConvexClass && class2 == dConvexClass) {
-        function = ode.convexConvex;
+        collider = &ode.convexConvex;
     } else if (class1 == dConvexClass || class2 == dConvexClass) {
         reverse = class1 != dConvexClass;
         const int other = reverse ? class1 : class2;
-        function = other == dBoxClass ? ode.convexBox : other == dPlaneClass ? ode.convexPlane : nullptr;
+        collider = other == dBoxClass ? &ode.convexBox : other == dPlaneClass ? &ode.convexPlane : nullptr;
     }
+    // ODE's own collider answers nothing for this pair kind (ODE without libccd): neither does this.
+    if (collider && collider->fallback == detail::OdeFallback::OdeGivesNone) return 0;
+    dColliderFn* function = collider ? collider->function : nullptr;
     if (!function) {
         sayOnce(saidNoOdeCollider,
-                "gdcontact: this libode does not export ODE's convex colliders, so pairs with a plain "
-                "dCreateConvex geom get no contacts; create such geoms with gdc::ode::createConvex. (Said once.)");
+                "gdcontact: this ODE does not export its own convex colliders (a static libode, or one built "
+                "with hidden symbols), so after install() box, convex and plane pairs with a plain dCreateConvex "
+                "geom get no contacts; create such geoms with gdc::ode::createConvex (docs/ode.md). (Said once.)");
         return 0;
     }
     const int count = reverse ? function(o2, o1, maxContacts, contact, skip)

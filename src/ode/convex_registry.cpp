@@ -1,4 +1,5 @@
 #include "convex_registry.hpp"
+#include "ode_real.hpp"
 
 #include "free_hook.hpp"
 
@@ -164,7 +165,8 @@ bool matchesAabb(const Polytope& hull, const Pose& pose, dGeomID geom, int brute
     }
     dReal box[6];
     dGeomGetAABB(geom, box);
-    const double tolerance = 1e-9 * (hull.radius() + pose.position.norm()) + 1e-300;
+    // ODE computed the box in dReal: a single-precision one is off by float rounding (ode_real.hpp).
+    const double tolerance = inputRelativeTolerance(1e-9) * (hull.radius() + pose.position.norm()) + 1e-300;
     for (int axis = 0; axis < axes; ++axis) {
         if (!(std::abs(static_cast<double>(box[2 * axis]) - lower[axis]) <= tolerance)) return false;
         if (!(std::abs(static_cast<double>(box[2 * axis + 1]) - upper[axis]) <= tolerance)) return false;

@@ -2,24 +2,140 @@
 
 #include <dlfcn.h>
 
-namespace gdc::ode::detail {
+#include <cstring>
+#include <initializer_list>
+#include <mutex>
+#include <vector>
 
-bool odeIsInitialized() {
+namespace gdc::ode::detail {
+namespace {
+
+void* initializationHook() {
     // Set by dInitODE2's first call (odeou's assertion handler), reset by the matching dCloseODE.
     static void* const hook =
         dlsym(RTLD_DEFAULT, "_ZN5odeou28CAssertionCheckCustomization24g_fnAssertFailureHandlerE");
+    return hook;
+}
+
+dColliderFn* exported(const char* name) { return reinterpret_cast<dColliderFn*>(dlsym(RTLD_DEFAULT, name)); }
+
+OdeColliders& found() {
+    static OdeColliders colliders;
+    return colliders;
+}
+
+// Set while this thread probes ODE's table: a table that already sends convex pairs to gdcontact
+// (a program that set gdc::ode::collide with dSetColliderOverride itself) comes back here.
+thread_local bool probing = false;
+thread_local bool reentered = false;
+
+constexpr int kProbeContacts = 8;
+struct Answer {
+    int count = 0;
+    dContactGeom contacts[kProbeContacts];
+};
+
+// Both answers zero-filled first (ODE leaves the padding of pos and normal unwritten).
+Answer answerOf(dColliderFn* function, dGeomID o1, dGeomID o2) {
+    Answer answer;
+    std::memset(answer.contacts, 0, sizeof answer.contacts);
+    answer.count = function ? function(o1, o2, kProbeContacts, answer.contacts, sizeof(dContactGeom))
+                            : dCollide(o1, o2, kProbeContacts, answer.contacts, sizeof(dContactGeom));
+    return answer;
+}
+
+bool same(const Answer& a, const Answer& b) {
+    return a.count == b.count && std::memcmp(a.contacts, b.contacts, sizeof(dContactGeom) * a.count) == 0;
+}
+
+// ODE's answer for (o1, o2) through its table, and which candidate gives the same: ODE's table
+// holds (convex, X) unreversed for every X here (collision_kernel.cpp's setCollider order).
+OdeCollider identify(dGeomID o1, dGeomID o2, std::initializer_list<const char*> candidates) {
+    reentered = false;
+    const Answer ode = answerOf(nullptr, o1, o2);
+    if (reentered) return OdeCollider{OdeFallback::Unreachable, nullptr};  // the table is not ODE's
+    if (ode.count == 0) return OdeCollider{OdeFallback::OdeGivesNone, nullptr};
+    for (const char* name : candidates)
+        if (dColliderFn* function = exported(name); function && same(answerOf(function, o1, o2), ode))
+            return OdeCollider{OdeFallback::OdeCollider, function};
+    return OdeCollider{OdeFallback::Unreachable, nullptr};
+}
+
+const char* describe(const OdeCollider& collider) {
+    switch (collider.fallback) {
+        case OdeFallback::OdeCollider: return "ODE's own collider";
+        case OdeFallback::OdeGivesNone: return "none (ODE's own collider gives none)";
+        case OdeFallback::Unreachable: break;
+    }
+    return "none (ODE's own collider is not exported by this ODE)";
+}
+
+}  // namespace
+
+bool odeInitializationKnown() { return initializationHook() != nullptr; }
+
+bool odeIsInitialized() {
+    void* const hook = initializationHook();
     if (!hook) return true;
     return *static_cast<void* const volatile*>(hook) != nullptr;
 }
 
+std::string odeConfigurationProblem() {
+    const bool headersDouble = sizeof(dReal) == sizeof(double);
+    const char* wanted = headersDouble ? "ODE_double_precision" : "ODE_single_precision";
+    if (dCheckConfiguration(wanted)) return "";
+    return std::string("gdcontact was compiled with the headers of a ") + (headersDouble ? "double" : "single") +
+           "-precision ODE, but the libode it runs with is not one (dGetConfiguration: \"" + dGetConfiguration() +
+           "\"): rebuild gdcontact against the ODE the program links";
+}
+
+void captureOdeColliders() {
+    static std::once_flag once;
+    std::call_once(once, [] {
+        probing = true;
+        // A cube of half size 0.5 as dCreateConvex takes it (planes, points, polygons).
+        static const dReal planes[] = {1, 0, 0, 0.5, -1, 0, 0, 0.5, 0, 1, 0, 0.5,
+                                       0, -1, 0, 0.5, 0, 0, 1, 0.5, 0, 0, -1, 0.5};
+        static const dReal points[] = {-0.5, -0.5, -0.5, 0.5, -0.5, -0.5, 0.5, 0.5, -0.5, -0.5, 0.5, -0.5,
+                                       -0.5, -0.5, 0.5,  0.5, -0.5, 0.5,  0.5, 0.5, 0.5,  -0.5, 0.5, 0.5};
+        static const unsigned polygons[] = {4, 1, 2, 6, 5, 4, 0, 4, 7, 3, 4, 3, 7, 6, 2,
+                                            4, 0, 1, 5, 4, 4, 4, 5, 6, 7, 4, 0, 3, 2, 1};
+        dGeomID a = dCreateConvex(nullptr, planes, 6, points, 8, polygons);
+        dGeomID b = dCreateConvex(nullptr, planes, 6, points, 8, polygons);
+        dGeomID box = dCreateBox(nullptr, 1, 1, 1);
+        dGeomID plane = dCreatePlane(nullptr, 0, 0, 1, 0);
+        dMatrix3 tilt;
+        dRFromAxisAndAngle(tilt, 1, 2, 3, 0.3);
+        dGeomSetPosition(a, 0, 0, 0.3);  // 0.2 below the plane z = 0, overlapping b and box
+        for (dGeomID other : {b, box}) {
+            dGeomSetPosition(other, 0.1, 0.2, 1.1);
+            dGeomSetRotation(other, tilt);
+        }
+        OdeColliders& colliders = found();
+        colliders.convexConvex = identify(a, b, {"_Z23dCollideConvexConvexCCDP6dxGeomS0_iP12dContactGeomi",
+                                                 "_Z20dCollideConvexConvexP6dxGeomS0_iP12dContactGeomi"});
+        colliders.convexBox = identify(a, box, {"_Z20dCollideConvexBoxCCDP6dxGeomS0_iP12dContactGeomi",
+                                                "_Z17dCollideConvexBoxP6dxGeomS0_iP12dContactGeomi"});
+        colliders.convexPlane = identify(a, plane, {"_Z19dCollideConvexPlaneP6dxGeomS0_iP12dContactGeomi"});
+        for (dGeomID geom : {a, b, box, plane}) dGeomDestroy(geom);
+        probing = false;
+    });
+}
+
 const OdeColliders& odeColliders() {
-    static const OdeColliders colliders = [] {
-        auto find = [](const char* name) { return reinterpret_cast<dColliderFn*>(dlsym(RTLD_DEFAULT, name)); };
-        return OdeColliders{find("_Z23dCollideConvexConvexCCDP6dxGeomS0_iP12dContactGeomi"),
-                            find("_Z20dCollideConvexBoxCCDP6dxGeomS0_iP12dContactGeomi"),
-                            find("_Z19dCollideConvexPlaneP6dxGeomS0_iP12dContactGeomi")};
-    }();
-    return colliders;
+    if (probing) {
+        reentered = true;
+        static const OdeColliders none;
+        return none;
+    }
+    captureOdeColliders();  // collide() without install(): ODE's table is still ODE's
+    return found();
+}
+
+std::string describeOdeColliders() {
+    const OdeColliders& colliders = found();
+    return std::string("convex-convex: ") + describe(colliders.convexConvex) +
+           "; convex-box: " + describe(colliders.convexBox) + "; convex-plane: " + describe(colliders.convexPlane);
 }
 
 }  // namespace gdc::ode::detail

@@ -159,5 +159,10 @@ inline const ThreadCache::PlaneSlot& planeSlot(ThreadCache& cache, const double*
     if (std::memcmp(last.raw, parameters, sizeof last.raw) == 0) return last;
     return planeSlotSlow(cache, parameters[0], parameters[1], parameters[2], parameters[3]);
 }
+/// The same for a single-precision ODE's parameters (dReal is float): converted to double first.
+inline const ThreadCache::PlaneSlot& planeSlot(ThreadCache& cache, const float* parameters) {
+    const double asDouble[4] = {parameters[0], parameters[1], parameters[2], parameters[3]};
+    return planeSlot(cache, asDouble);
+}
 
 }  // namespace gdc::ode::detail

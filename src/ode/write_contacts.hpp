@@ -6,6 +6,8 @@
 #include <gdcontact/manifold.hpp>
 #include <gdcontact/settings.hpp>
 
+#include "ode_real.hpp"
+
 #include <ode/ode.h>
 
 #include <algorithm>
@@ -17,8 +19,8 @@
 
 namespace gdc::ode::detail {
 
-// Where writeContacts stores the fields every contact of a call shares, two at a time.
-static_assert(sizeof(dReal) == sizeof(double), "gdcontact needs ODE built with double precision");
+// Where writeContacts stores the fields every contact of a call shares, two at a time (pos and
+// normal so only where dReal is double; a single-precision ODE's are converted field by field).
 static_assert(offsetof(dContactGeom, g2) == offsetof(dContactGeom, g1) + sizeof(dGeomID),
               "g1 and g2 are written as one pair");
 
@@ -93,7 +95,8 @@ inline int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair,
     // ODE treats every contact as active and clamps a negative depth to zero, so a speculative
     // point (depth < 0, only with Settings::margin > 0) would hold the bodies apart by its gap.
     // Such points are not passed on; a rounding-level negative depth is reported as touching.
-    const double touchingTolerance = 1e-9 * sizeOfPair;
+    // (Relative to dReal's precision: a single-precision ODE's poses round a resting depth by ~1e-7.)
+    const double touchingTolerance = inputRelativeTolerance(1e-9) * sizeOfPair;
     // The core's points come in the order of importance (the deepest first; every prefix the best
     // of its length), already reduced to maxContacts: the set is the best of its size. The ORDER
     // is by depth, for dWorldQuickStep, which solves rows in the order they arrive: ODE's
@@ -137,20 +140,40 @@ inline int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair,
     const Ranked* entry = reverse ? &ranked[written] : &ranked[1];
     const std::ptrdiff_t step = reverse ? -1 : 1;
     char* outBytes = reinterpret_cast<char*>(contact);
-    for (int k = written; k > 0; --k, outBytes += skip, entry += step) {
-        const Vec3& position = entry->point->position;
-        const DoublePair positionXY = {position.x(), position.y()}, positionZ0 = {position.z(), 0.0};
-        std::memcpy(outBytes + offsetof(dContactGeom, pos), &positionXY, sizeof positionXY);
-        std::memcpy(outBytes + offsetof(dContactGeom, pos) + sizeof positionXY, &positionZ0, sizeof positionZ0);
-        std::memcpy(outBytes + offsetof(dContactGeom, normal), &normalXY, sizeof normalXY);
-        std::memcpy(outBytes + offsetof(dContactGeom, normal) + sizeof normalXY, &normalZ0, sizeof normalZ0);
-        dContactGeom* out = reinterpret_cast<dContactGeom*>(outBytes);
-        // std::max(depth, 0.0) as x86's maxsd computes it (0.0 where 0.0 > depth, else depth: −0.0
-        // stays −0.0), one instruction in place of a compare and a branch.
-        out->depth = 0.0 > entry->depth ? 0.0 : entry->depth;
-        std::memcpy(outBytes + offsetof(dContactGeom, g1), &geoms, sizeof geoms);
-        out->side1 = -1;
-        out->side2 = -1;
+    if constexpr (!kOdeRealIsDouble) {
+        // Single precision: each field rounded to dReal (a unit normal stays unit within float's
+        // rounding, which ODE's own float colliders have too).
+        for (int k = written; k > 0; --k, outBytes += skip, entry += step) {
+            const Vec3& position = entry->point->position;
+            dContactGeom* out = reinterpret_cast<dContactGeom*>(outBytes);
+            for (int axis = 0; axis < 3; ++axis) {
+                out->pos[axis] = static_cast<dReal>(position[axis]);
+                out->normal[axis] = static_cast<dReal>(normal[axis]);
+            }
+            out->pos[3] = 0;
+            out->normal[3] = 0;
+            out->depth = static_cast<dReal>(0.0 > entry->depth ? 0.0 : entry->depth);
+            out->g1 = o1;
+            out->g2 = o2;
+            out->side1 = -1;
+            out->side2 = -1;
+        }
+    } else {
+        for (int k = written; k > 0; --k, outBytes += skip, entry += step) {
+            const Vec3& position = entry->point->position;
+            const DoublePair positionXY = {position.x(), position.y()}, positionZ0 = {position.z(), 0.0};
+            std::memcpy(outBytes + offsetof(dContactGeom, pos), &positionXY, sizeof positionXY);
+            std::memcpy(outBytes + offsetof(dContactGeom, pos) + sizeof positionXY, &positionZ0, sizeof positionZ0);
+            std::memcpy(outBytes + offsetof(dContactGeom, normal), &normalXY, sizeof normalXY);
+            std::memcpy(outBytes + offsetof(dContactGeom, normal) + sizeof normalXY, &normalZ0, sizeof normalZ0);
+            dContactGeom* out = reinterpret_cast<dContactGeom*>(outBytes);
+            // std::max(depth, 0.0) as x86's maxsd computes it (0.0 where 0.0 > depth, else depth: −0.0
+            // stays −0.0), one instruction in place of a compare and a branch.
+            out->depth = 0.0 > entry->depth ? 0.0 : entry->depth;
+            std::memcpy(outBytes + offsetof(dContactGeom, g1), &geoms, sizeof geoms);
+            out->side1 = -1;
+            out->side2 = -1;
+        }
     }
     return written;
 }

@@ -353,11 +353,11 @@ TEST_CASE("reduceBodyPair: budget, deepest kept, survivors unchanged, mirrored f
     CHECK(std::any_of(kept.begin(), kept.begin() + count, [&](const dContactGeom& c) { return c.depth == deepest; }));
     // The kept points span the outer parts of A: x from the left slab to the right one.
     double low = 1e9, high = -1e9;
-    for (int k = 0; k < count; ++k) low = std::min(low, kept[k].pos[0]), high = std::max(high, kept[k].pos[0]);
+    for (int k = 0; k < count; ++k) low = std::min<double>(low, kept[k].pos[0]), high = std::max<double>(high, kept[k].pos[0]);
     CHECK(high - low > 1.0);
     // A's centre of mass (dBodyGetPosition) over the kept polygon: its x and y between theirs.
     double lowY = 1e9, highY = -1e9;
-    for (int k = 0; k < count; ++k) lowY = std::min(lowY, kept[k].pos[1]), highY = std::max(highY, kept[k].pos[1]);
+    for (int k = 0; k < count; ++k) lowY = std::min<double>(lowY, kept[k].pos[1]), highY = std::max<double>(highY, kept[k].pos[1]);
     CHECK(lowY < 0.0);
     CHECK(highY > 0.0);
 

@@ -2,9 +2,13 @@
  * Exits non-zero naming each failed check. */
 #include <gdcontact/ode.h>
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+
+/* 1e-9, or float's rounding where ODE's dReal is float (64 ulps: tests/ode_precision.hpp's rule). */
+#define TOLERANCE (sizeof(dReal) == sizeof(double) ? 1e-9 : 64.0 * FLT_EPSILON)
 
 static int failures = 0;
 
@@ -109,9 +113,9 @@ static void checkContacts(dGeomID lower, dGeomID upper, int viaDCollide) {
                     : gdcCollide(lower, upper, 8, contacts, sizeof(dContactGeom));
     CHECK(n == 4);
     for (i = 0; i < n && i < 8; ++i) {
-        CHECK(fabs(contacts[i].normal[2] + 1.0) < 1e-9); /* from o2 (upper) into o1 (lower) */
-        CHECK(fabs(contacts[i].depth - 0.01) < 1e-9);
-        CHECK(fabs(fabs(contacts[i].pos[0]) - 0.5) < 1e-9 && fabs(fabs(contacts[i].pos[1]) - 0.5) < 1e-9);
+        CHECK(fabs(contacts[i].normal[2] + 1.0) < TOLERANCE); /* from o2 (upper) into o1 (lower) */
+        CHECK(fabs(contacts[i].depth - 0.01) < TOLERANCE);
+        CHECK(fabs(fabs(contacts[i].pos[0]) - 0.5) < TOLERANCE && fabs(fabs(contacts[i].pos[1]) - 0.5) < TOLERANCE);
         CHECK(contacts[i].g1 == lower && contacts[i].g2 == upper);
         CHECK(contacts[i].side1 == -1 && contacts[i].side2 == -1);
     }
@@ -141,7 +145,7 @@ static void recordPair(void* data, dGeomID o1, dGeomID o2, dContactGeom* contact
     record->contacts += count;
     for (i = 0; i < count; ++i)
         record->validNormals += fabs(contacts[i].normal[0] * contacts[i].normal[0] + contacts[i].normal[1] *
-                                     contacts[i].normal[1] + contacts[i].normal[2] * contacts[i].normal[2] - 1.0) < 1e-9;
+                                     contacts[i].normal[1] + contacts[i].normal[2] * contacts[i].normal[2] - 1.0) < TOLERANCE;
 }
 
 static void checkSpaceCollide(void) {
@@ -204,8 +208,8 @@ static void checkReduceBodyPair(void) {
     CHECK(kept == 4);
     CHECK(strcmp(gdcLastError(), "") == 0);
     for (i = 0; i < kept && i < 16; ++i) {
-        corners += fabs(fabs(contacts[i].pos[0]) - 1.0) < 1e-9 && fabs(fabs(contacts[i].pos[1]) - 0.5) < 1e-9;
-        CHECK(fabs(contacts[i].depth - 0.01) < 1e-9);
+        corners += fabs(fabs(contacts[i].pos[0]) - 1.0) < TOLERANCE && fabs(fabs(contacts[i].pos[1]) - 0.5) < TOLERANCE;
+        CHECK(fabs(contacts[i].depth - 0.01) < TOLERANCE);
         CHECK(contacts[i].g1 == ground || contacts[i].g2 == ground);
     }
     CHECK(corners == 4);

@@ -8,6 +8,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <dlfcn.h>
+
 #include <cmath>
 #include <csignal>
 #include <limits>
@@ -35,9 +37,20 @@ gdc::Settings withMaxContacts(int n) {
     return settings;
 }
 
+// Whether gdcontact can tell an uninitialised ODE: ODE 0.16.x has no public query; a shared libode
+// exports the flag its initialisation sets, a static one does not, and then install() cannot check
+// the call order (docs/ode.md, "install() before dInitODE2()").
+bool initialisationVisible() {
+    return dlsym(RTLD_DEFAULT, "_ZN5odeou28CAssertionCheckCustomization24g_fnAssertFailureHandlerE") != nullptr;
+}
+
 }  // namespace
 
 TEST_CASE("install() before dInitODE2() says to call dInitODE2 first", "[dropin][misuse]") {
+    if (!initialisationVisible()) {
+        WARN("this ODE (a static libode) does not let gdcontact tell whether it is initialised: not checked");
+        return;
+    }
     CHECK_THROWS_WITH(gdc::ode::install(), Catch::Contains("dInitODE2") && Catch::Contains("not initialised"));
     // A program that does not catch it ends with that message, not inside ODE.
     const auto [status, text] = runInChild([] {
@@ -58,7 +71,8 @@ TEST_CASE("install() twice replaces the settings, after dCloseODE it must follow
     gdc::ode::install(withMaxContacts(3));  // twice: the later settings win
     CHECK(boxOnBoxContacts() == 3);
     dCloseODE();
-    CHECK_THROWS_WITH(gdc::ode::install(), Catch::Contains("dInitODE2"));  // closed: refused, not an ODE abort
+    if (initialisationVisible())  // else not seen (a static libode): docs/ode.md
+        CHECK_THROWS_WITH(gdc::ode::install(), Catch::Contains("dInitODE2"));  // closed: refused, not an ODE abort
     dInitODE2(0);
     CHECK(boxOnBoxContacts() == 4);  // dCloseODE forgot the override: ODE's dBoxBox again
     gdc::ode::install(withMaxContacts(3));

@@ -5,6 +5,8 @@
 //
 //   contact_geom_dump dump FILE             (run by the build before the change and by the build after)
 //   contact_geom_dump compare BEFORE AFTER  (largest difference in normal, depth and position per pair type)
+//   contact_geom_dump compare-sets BEFORE AFTER  (the same, each contact against BEFORE's nearest:
+//                                            a double- against a single-precision ODE, docs/install.md)
 //
 // Pair types: box–plane and plane–box (random box sizes, planes of any orientation through the
 // box), convex–plane (gdc::ode::createConvex: a cube's hull and small random hulls), box–box and
@@ -202,13 +204,20 @@ int dump(const char* path) {
     return 0;
 }
 
-int compare(const char* beforePath, const char* afterPath) {
+// `sets`: each contact of AFTER held against the nearest contact of BEFORE (by position) instead of
+// the one at its index — for builds whose contacts may come in another order (equal depths that
+// a single-precision ODE's rounding makes unequal), where the question is how far the points moved.
+int compare(const char* beforePath, const char* afterPath, bool sets = false) {
     std::FILE* before = std::fopen(beforePath, "rb");
     std::FILE* after = std::fopen(afterPath, "rb");
     if (!before || !after) return std::perror("compare"), 2;
     struct Largest {
         long calls = 0, withContacts = 0, contacts = 0, identical = 0, mismatches = 0;
         double normal = 0, depth = 0, position = 0;  // relative to the pair's size (normal: |Δn|)
+        // sets: contacts farther than 1e-5 of the size from every contact of BEFORE (another choice
+        // among nearly equally deep points), and the largest differences among the others
+        long moved = 0;
+        double nearDepth = 0, nearPosition = 0;
     };
     std::map<int, Largest> types;
     Record x, y;
@@ -230,7 +239,17 @@ int compare(const char* beforePath, const char* afterPath) {
         if (x.count > 0) ++l.withContacts;
         l.contacts += x.count;
         for (int i = 0; i < x.count; ++i) {
-            const Contact &a = x.contacts[i], &b = y.contacts[i];
+            const Contact& b = y.contacts[i];
+            int nearest = i;
+            for (int j = 0; sets && j < x.count; ++j) {
+                auto distance = [&](int k) {
+                    double d = 0;
+                    for (int axis = 0; axis < 3; ++axis) d = std::max(d, std::abs(x.contacts[k].pos[axis] - b.pos[axis]));
+                    return d;
+                };
+                if (distance(j) < distance(nearest)) nearest = j;
+            }
+            const Contact& a = x.contacts[nearest];
             double dn = 0, dp = 0;
             for (int k = 0; k < 4; ++k) {
                 dn = std::max(dn, std::abs(a.normal[k] - b.normal[k]));
@@ -239,6 +258,12 @@ int compare(const char* beforePath, const char* afterPath) {
             l.normal = std::max(l.normal, dn);
             l.position = std::max(l.position, dp / x.size);
             l.depth = std::max(l.depth, std::abs(a.depth - b.depth) / x.size);
+            if (dp / x.size > 1e-5) {
+                ++l.moved;
+            } else {
+                l.nearPosition = std::max(l.nearPosition, dp / x.size);
+                l.nearDepth = std::max(l.nearDepth, std::abs(a.depth - b.depth) / x.size);
+            }
         }
         l.identical += std::memcmp(x.contacts, y.contacts, sizeof(Contact) * x.count) == 0;
     }
@@ -251,6 +276,14 @@ int compare(const char* beforePath, const char* afterPath) {
                     l.contacts, l.identical, l.mismatches, l.normal, l.depth, l.position);
         ok = ok && l.mismatches == 0 && l.normal <= 1e-9 && l.depth <= 1e-9 && l.position <= 1e-9;
     }
+    if (sets) {
+        std::printf("\n%-14s %9s %9s %12s %12s\n", "pair type", "contacts", "moved", "ddepth/s", "dpos/s");
+        for (const auto& [type, l] : types)
+            std::printf("%-14s %9ld %9ld %12.3g %12.3g\n", kTypeNames[type], l.contacts, l.moved, l.nearDepth,
+                        l.nearPosition);
+        std::printf("(moved: farther than 1e-5 of the size from every contact of BEFORE; the differences are "
+                    "those of the others)\n");
+    }
     return ok ? 0 : 1;
 }
 
@@ -259,6 +292,7 @@ int compare(const char* beforePath, const char* afterPath) {
 int main(int argc, char** argv) {
     if (argc == 3 && std::string(argv[1]) == "dump") return dump(argv[2]);
     if (argc == 4 && std::string(argv[1]) == "compare") return compare(argv[2], argv[3]);
-    std::fprintf(stderr, "usage: contact_geom_dump dump FILE | contact_geom_dump compare BEFORE AFTER\n");
+    if (argc == 4 && std::string(argv[1]) == "compare-sets") return compare(argv[2], argv[3], true);
+    std::fprintf(stderr, "usage: contact_geom_dump dump FILE | contact_geom_dump compare[-sets] BEFORE AFTER\n");
     return 2;
 }

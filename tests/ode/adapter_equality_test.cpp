@@ -114,9 +114,10 @@ void compare(dGeomID o1, dGeomID o2, int limit, const Settings& installed, Compa
     }
     for (int i = 0; i < count; ++i) {
         const dContactGeom &got = records[static_cast<std::size_t>(i)].geom, &want = expected[static_cast<std::size_t>(i)];
-        double difference = std::abs(got.depth - want.depth);
+        double difference = std::abs(static_cast<double>(got.depth) - want.depth);
         for (int k = 0; k < 4; ++k)
-            difference = std::max({difference, std::abs(got.pos[k] - want.pos[k]), std::abs(got.normal[k] - want.normal[k])});
+            difference = std::max({difference, static_cast<double>(std::abs(got.pos[k] - want.pos[k])),
+                                     static_cast<double>(std::abs(got.normal[k] - want.normal[k]))});
         const bool same = difference == 0 && got.g1 == want.g1 && got.g2 == want.g2 && got.side1 == -1 &&
                           got.side2 == -1 && std::signbit(got.depth) == std::signbit(want.depth);
         if (!same) ++result.mismatches;
@@ -451,9 +452,10 @@ void compareWrites(Manifold manifold, double sizeOfPair, std::mt19937_64& random
         dContactGeom a, b;
         std::memcpy(&a, got.data() + static_cast<std::ptrdiff_t>(i) * skip, sizeof a);
         std::memcpy(&b, want.data() + static_cast<std::ptrdiff_t>(i) * skip, sizeof b);
-        double difference = std::abs(a.depth - b.depth);
+        double difference = std::abs(static_cast<double>(a.depth) - b.depth);
         for (int k = 0; k < 4; ++k)
-            difference = std::max({difference, std::abs(a.pos[k] - b.pos[k]), std::abs(a.normal[k] - b.normal[k])});
+            difference = std::max({difference, static_cast<double>(std::abs(a.pos[k] - b.pos[k])),
+                                     static_cast<double>(std::abs(a.normal[k] - b.normal[k]))});
         if (!(difference <= result.largest)) result.largest = difference;  // a NaN difference stays visible
     }
 }

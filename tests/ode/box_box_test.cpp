@@ -3,6 +3,7 @@
 #include <gdcontact/ode.hpp>
 
 #include "box_sat.hpp"
+#include "ode_precision.hpp"
 #include "ode_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -73,7 +74,7 @@ TEST_CASE("random box–box: moving o1 by 0.96·depth along the normal keeps tou
             REQUIRE(contact.depth >= 0.0);
             depth = std::max(depth, static_cast<double>(contact.depth));
         }
-        REQUIRE(std::abs(normal.norm() - 1.0) < 1e-12);
+        REQUIRE(std::abs(normal.norm() - 1.0) < realTolerance(1e-12));
         OrientedBox moved = a;
         moved.pose.position = a.pose.position + 0.96 * depth * normal;
         CHECK(boxesTouch(moved, b));
@@ -208,7 +209,7 @@ TEST_CASE("on face contacts gdcontact's normal is dBoxBox's and its points cover
             std::vector<Vec3> ourPoints, odePoints;
             for (const dContactGeom& c : ours) ourPoints.push_back(toVec(c.pos));
             for (int i = 0; i < odeCount; ++i) odePoints.push_back(toVec(odeContacts[i].pos));
-            CHECK(hullCovers(ourPoints, odePoints, expected, 1e-9));
+            CHECK(hullCovers(ourPoints, odePoints, expected, realTolerance(1e-9)));
         }
         dGeomDestroy(geomA);
         dGeomDestroy(geomB);

@@ -3,6 +3,7 @@
 // side1 = side2 = -1, count ≤ maxc, stride honoured, mirrored answers.
 #include <gdcontact/ode.hpp>
 
+#include "ode_precision.hpp"
 #include "ode_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -60,7 +61,7 @@ struct Scene {
 bool insideFootprints(const Vec3& p, bool lowerIsCube) {
     const Mat3 turn = rotationAbout(Vec3::UnitZ(), 30.0 * M_PI / 180.0);
     const Vec3 local = turn.transpose() * (p - Vec3(0.3, 0, 0));
-    const double slack = 1e-9;
+    const double slack = realTolerance(1e-9);
     if (std::abs(local.x()) > 0.5 + slack || std::abs(local.y()) > 0.5 + slack) return false;
     if (lowerIsCube && (std::abs(p.x()) > 0.5 + slack || std::abs(p.y()) > 0.5 + slack)) return false;
     return true;
@@ -76,14 +77,14 @@ void checkConvention(const std::vector<dContactGeom>& contacts, dGeomID o1, dGeo
         CHECK(contact.side1 == -1);
         CHECK(contact.side2 == -1);
         const Vec3 normal = toVec(contact.normal);
-        CHECK(normal.norm() == Approx(1.0).margin(1e-12));
-        CHECK(normal.z() == Approx(expectedNormalZ).margin(1e-9));
+        CHECK(normal.norm() == Approx(1.0).margin(realTolerance(1e-12)));
+        CHECK(normal.z() == Approx(expectedNormalZ).margin(realTolerance(1e-9)));
         CHECK(contact.depth >= 0.0);
-        CHECK(contact.depth == Approx(Scene::kDepth).margin(1e-9));
+        CHECK(contact.depth == Approx(Scene::kDepth).margin(realTolerance(1e-9)));
         const Vec3 position = toVec(contact.pos);
         // Between the upper cube's bottom (z = -0.01) and the lower top (z = 0), inside both.
-        CHECK(position.z() >= -Scene::kDepth - 1e-9);
-        CHECK(position.z() <= 1e-9);
+        CHECK(position.z() >= -Scene::kDepth - realTolerance(1e-9));
+        CHECK(position.z() <= realTolerance(1e-9));
         CHECK(insideFootprints(position, lowerIsCube));
     }
 }
@@ -133,7 +134,7 @@ TEST_CASE("a cube overlapping a cube face gets the four corners of the overlap r
         for (double x : {-0.2, 0.5})
             for (double y : {-0.5, 0.3}) {
                 const bool found = std::any_of(contacts.begin(), contacts.end(), [&](const dContactGeom& c) {
-                    return std::abs(c.pos[0] - x) < 1e-9 && std::abs(c.pos[1] - y) < 1e-9;
+                    return std::abs(c.pos[0] - x) < realTolerance(1e-9) && std::abs(c.pos[1] - y) < realTolerance(1e-9);
                 });
                 CHECK(found);
             }
@@ -228,11 +229,11 @@ TEST_CASE("a tilted plane gives its own normal in ODE's direction", "[ode][conve
             deepest = std::max(deepest, 0.7 - up.dot(pose.apply(corner)));
         double reportedDeepest = 0;
         for (const dContactGeom& contact : contacts) {
-            CHECK((toVec(contact.normal) - sign * up).norm() < 1e-12);
+            CHECK((toVec(contact.normal) - sign * up).norm() < realTolerance(1e-12));
             reportedDeepest = std::max(reportedDeepest, static_cast<double>(contact.depth));
             CHECK(contact.g1 == o1);
         }
-        CHECK(reportedDeepest == Approx(deepest).margin(1e-9));
+        CHECK(reportedDeepest == Approx(deepest).margin(realTolerance(1e-9)));
     }
     dGeomDestroy(plane);
     dGeomDestroy(box);

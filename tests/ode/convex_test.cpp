@@ -3,6 +3,8 @@
 #include <gdcontact/ode.hpp>
 
 #include "child_process.hpp"
+#include "ode/ode_internals.hpp"
+#include "ode_precision.hpp"
 #include "ode_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -132,13 +134,13 @@ TEST_CASE("ODE's own sphere and ray colliders see the hull of a createConvex geo
     dGeomSetPosition(sphere, 0, 0, 0.65);  // 0.05 into the top face
     const auto contacts = collideThroughOde(sphere, convex, 4);
     REQUIRE(contacts.size() >= 1);
-    CHECK(contacts[0].depth == Approx(0.05).margin(1e-9));
-    CHECK(toVec(contacts[0].normal).z() == Approx(1.0).margin(1e-9));
+    CHECK(contacts[0].depth == Approx(0.05).margin(realTolerance(1e-9)));
+    CHECK(toVec(contacts[0].normal).z() == Approx(1.0).margin(realTolerance(1e-9)));
     dGeomID ray = dCreateRay(0, 10);
     dGeomRaySet(ray, 0.1, 0.2, 5, 0, 0, -1);
     const auto hits = collideThroughOde(ray, convex, 1);
     REQUIRE(hits.size() == 1);
-    CHECK(hits[0].depth == Approx(4.5).margin(1e-9));  // distance from the ray start to the top face
+    CHECK(hits[0].depth == Approx(4.5).margin(realTolerance(1e-9)));  // distance from the ray start to the top face
     for (dGeomID geom : {convex, sphere, ray}) dGeomDestroy(geom);
 }
 
@@ -248,7 +250,11 @@ struct CapturedMessages {
 };
 }  // namespace
 
-TEST_CASE("a plain dCreateConvex geom after install() gets ODE's own contacts, with one message",
+// What a plain dCreateConvex geom gets after install() depends on the ODE linked (docs/ode.md,
+// "Plain dCreateConvex geoms"): ODE's own answer where its collider is exported (a shared libode),
+// nothing where ODE's own collider gives nothing (convex-box without libccd), and otherwise no
+// contacts with one message saying why — never another answer than ODE's.
+TEST_CASE("a plain dCreateConvex geom after install() gets ODE's own contacts or, where ODE's collider is out of reach, none, with one message",
           "[ode][convex]") {
     OdeCube cube;
     // ODE's answers without gdcontact, for the same poses.
@@ -272,25 +278,54 @@ TEST_CASE("a plain dCreateConvex geom after install() gets ODE's own contacts, w
     const auto reference = run(false);
     CapturedMessages captured;
     const auto adapted = run(true);
+    const gdc::ode::detail::OdeColliders& found = gdc::ode::detail::odeColliders();
+    INFO("ODE " << dGetConfiguration() << "; " << gdc::ode::detail::describeOdeColliders());
+    const gdc::ode::detail::OdeCollider* colliderOf[] = {&found.convexBox,   &found.convexBox,
+                                                         &found.convexPlane, &found.convexPlane,
+                                                         &found.convexConvex, &found.convexConvex};
     REQUIRE(adapted.size() == reference.size());
-    int total = 0;
+    bool unreachable = false;
     for (std::size_t pair = 0; pair < reference.size(); ++pair) {
         INFO("pair " << pair);
-        REQUIRE(adapted[pair].size() == reference[pair].size());
-        for (std::size_t k = 0; k < reference[pair].size(); ++k) {
-            const dContactGeom& want = reference[pair][k];
-            const dContactGeom& got = adapted[pair][k];
-            CHECK((toVec(got.normal) - toVec(want.normal)).norm() < 1e-12);
-            CHECK((toVec(got.pos) - toVec(want.pos)).norm() < 1e-12);
-            CHECK(got.depth == Approx(want.depth).margin(1e-12));
-            CHECK(toVec(got.normal).norm() == Approx(1.0));
+        using gdc::ode::detail::OdeFallback;
+        const OdeFallback fallback = colliderOf[pair]->fallback;
+        if (fallback == OdeFallback::OdeGivesNone) {  // ODE's collider gives nothing: so does the adapter
+            CHECK(reference[pair].empty());
+            CHECK(adapted[pair].empty());
+            continue;
+        }
+        CHECK(!reference[pair].empty());  // every pair overlaps, and ODE's own collider says so
+        if (fallback == OdeFallback::Unreachable) {  // never another answer than ODE's: none
+            CHECK(adapted[pair].empty());
+            unreachable = true;
+            continue;
+        }
+        // ODE's answer for (a, b) — or, for two convexes, its answer for (b, a) mirrored: ODE calls
+        // a same-class override as fn(b, a) for dCollide(a, b), and ODE's own SAT convex–convex
+        // collider (ODE without libccd) is not symmetric, so which of the two the adapter got
+        // depends on how it was reached. Either is ODE's own.
+        auto matches = [&](const std::vector<dContactGeom>& want, double sign) {
+            if (adapted[pair].size() != want.size()) return false;
+            for (std::size_t k = 0; k < want.size(); ++k) {
+                const dContactGeom& got = adapted[pair][k];
+                const double tolerance = realTolerance(1e-12);  // the normal renormalised: float's rounding
+                if (!((toVec(got.normal) - sign * toVec(want[k].normal)).norm() < tolerance &&
+                      (toVec(got.pos) - toVec(want[k].pos)).norm() < tolerance &&
+                      std::abs(got.depth - want[k].depth) < tolerance))
+                    return false;
+            }
+            return true;
+        };
+        const bool twoConvexes = pair >= 4;
+        CHECK((matches(reference[pair], 1.0) || (twoConvexes && matches(reference[pair ^ 1], -1.0))));
+        for (const dContactGeom& got : adapted[pair]) {
+            CHECK(toVec(got.normal).norm() == Approx(1.0).epsilon(1e-5));
             CHECK(got.depth >= 0);
-            ++total;
         }
     }
-    CHECK(total >= 6);  // every pair overlaps
-    CHECK(occurrences(messages, "plain dCreateConvex") == 1);  // said once, not per pair
+    CHECK(occurrences(messages, "made with plain dCreateConvex") == 1);  // said once, not per pair
     CHECK_THAT(messages, Catch::Contains("gdc::ode::createConvex"));
+    CHECK(occurrences(messages, "does not export its own convex colliders") == (unreachable ? 1 : 0));
 }
 
 TEST_CASE("dGeomSetConvex on a createConvex geom is seen: ODE's collider takes over, with a message naming the fix",
@@ -310,8 +345,12 @@ TEST_CASE("dGeomSetConvex on a createConvex geom is seen: ODE's collider takes o
     // moves a body's geoms), and that is when gdcontact sees the change.
     dGeomSetPosition(geom, 0, 0, 0.24);
     const auto after = collideThroughOde(geom, ground, 8);
-    REQUIRE(!after.empty());
-    for (const dContactGeom& contact : after) CHECK(contact.depth == Approx(0.01).margin(1e-9));
+    // ODE's convex–plane collider where this ODE lets it be reached; else none (docs/ode.md).
+    if (gdc::ode::detail::odeColliders().convexPlane.fallback == gdc::ode::detail::OdeFallback::OdeCollider)
+        REQUIRE(!after.empty());
+    else
+        CHECK(after.empty());
+    for (const dContactGeom& contact : after) CHECK(contact.depth == Approx(0.01).margin(realTolerance(1e-9)));
     CHECK(occurrences(messages, "dGeomSetConvex (its bounding box") == 1);
     CHECK_THAT(messages, Catch::Contains("gdc::ode::createConvex"));
     dGeomDestroy(geom);
@@ -364,8 +403,8 @@ TEST_CASE("polytopeOf and poseOf describe box and convex geoms, offsets included
     dGeomSetBody(box, body);
     dGeomSetOffsetPosition(box, 1, 0, 0);
     const Pose pose = gdc::ode::poseOf(box);
-    CHECK((pose.position - (Vec3(1, 2, 3) + bodyRotation * Vec3(1, 0, 0))).norm() < 1e-12);
-    CHECK((pose.rotation - bodyRotation).norm() < 1e-12);
+    CHECK((pose.position - (Vec3(1, 2, 3) + bodyRotation * Vec3(1, 0, 0))).norm() < realTolerance(1e-12));
+    CHECK((pose.rotation - bodyRotation).norm() < realTolerance(1e-12));
     for (dGeomID geom : {box, sphere, plane}) dGeomDestroy(geom);
     dWorldDestroy(world);
 }

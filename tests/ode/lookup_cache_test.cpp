@@ -7,6 +7,8 @@
 #include <gdcontact/ode.hpp>
 
 #include "child_process.hpp"
+#include "ode/ode_internals.hpp"
+#include "ode_precision.hpp"
 #include "ode_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -165,7 +167,7 @@ TEST_CASE("boxes of more sizes than a thread keeps, and resized boxes, collide w
         dGeomSetPosition(boxes[i], 0, 0, half[j].z() + half[i].z() - depthOf(i, j));
         const auto contacts = collideDirectly(boxes[i], boxes[j]);
         REQUIRE(contacts.size() == 4);
-        CHECK(deepest(contacts) == Approx(depthOf(i, j)).margin(1e-9));
+        CHECK(deepest(contacts) == Approx(depthOf(i, j)).margin(realTolerance(1e-9)));
         CHECK(toVec(contacts[0].normal).z() == Approx(1.0));
     };
     // Each call looks up two sizes; cycling through 20 sizes evicts from the thread's cache all
@@ -206,10 +208,10 @@ TEST_CASE("planes given new parameters, and more planes than a thread keeps, col
         for (const bool planeFirst : {false, true}) {
             const auto contacts = planeFirst ? collideDirectly(plane, box) : collideDirectly(box, plane);
             REQUIRE_FALSE(contacts.empty());
-            CHECK(deepest(contacts) == Approx(expectedDepth(a, b, c, d)).margin(1e-9));
+            CHECK(deepest(contacts) == Approx(expectedDepth(a, b, c, d)).margin(realTolerance(1e-9)));
             // ODE's normal points from o2 into o1; the plane's own normal points out of its solid.
             const Vec3 normal = Vec3(a, b, c).normalized() * (planeFirst ? -1.0 : 1.0);
-            CHECK((toVec(contacts[0].normal) - normal).norm() < 1e-12);
+            CHECK((toVec(contacts[0].normal) - normal).norm() < realTolerance(1e-12));
         }
     };
     check(0, 0, 1, 0.01);
@@ -272,7 +274,10 @@ TEST_CASE("a plain dCreateConvex geom at the address of a collided createConvex 
         if (plain != ours) _exit(6);  // the test would prove nothing
         dGeomSetPosition(plain, 0, 0, 0.24);  // 1 cm into the ground; the old hull would be 6 cm in
         const auto contacts = collideDirectly(plain, ground);  // ODE's own collider, one message
-        if (contacts.empty()) _exit(3);
+        // Where this ODE does not let its collider be reached, none (docs/ode.md).
+        const bool reached =
+            gdc::ode::detail::odeColliders().convexPlane.fallback == gdc::ode::detail::OdeFallback::OdeCollider;
+        if (reached == contacts.empty()) _exit(3);
         for (const dContactGeom& contact : contacts)
             if (std::abs(contact.depth - 0.01) > 1e-6) _exit(4);  // the old hull's depth is 0.06
     });
@@ -280,7 +285,7 @@ TEST_CASE("a plain dCreateConvex geom at the address of a collided createConvex 
         WARN("ODE did not reuse the address: nothing to check");
         return;
     }
-    CHECK(status == 0);  // 3: no contacts, 4: the old hull's depth, 5: set-up failed
+    CHECK(status == 0);  // 3: no contacts (or some where ODE's are out of reach), 4: the old hull's depth, 5: set-up failed
     CHECK_THAT(text, Catch::Contains("plain dCreateConvex") && Catch::Contains("gdc::ode::createConvex"));
 }
 
@@ -367,7 +372,7 @@ dGeomID standingCube(int i) {
 bool usesItsOwnHull(dGeomID geom, int i, dGeomID ground) {
     std::array<dContactGeom, 8> out;
     const int count = gdc::ode::collide(geom, ground, 8, out.data(), sizeof(dContactGeom));
-    return count == 4 && std::abs(out[0].depth - (halfOf(i) - kCentre)) < 1e-9;
+    return count == 4 && std::abs(out[0].depth - (halfOf(i) - kCentre)) < realTolerance(1e-9);
 }
 
 }  // namespace
@@ -437,9 +442,14 @@ TEST_CASE("hundreds of convex geoms collided in evicting orders keep their own h
         dGeomSetPosition(geom, p[0], p[1], p[2]);
         dGeomGetPosition(geom);
     };
+    // The other data is seen: ODE's collider answers for it where this ODE lets it be reached,
+    // else the pair gets none (docs/ode.md) — never the old hull's contacts.
+    const bool odeReached =
+        gdc::ode::detail::odeColliders().convexPlane.fallback == gdc::ode::detail::OdeFallback::OdeCollider;
     auto seesOtherData = [&](int k) {
         const std::vector<dContactGeom> contacts = collideDirectly(geoms[k], ground);
-        return !contacts.empty() && std::abs(deepest(contacts) - (0.3 - kCentre)) < 1e-9;  // ODE's collider
+        if (!odeReached) return contacts.empty();
+        return !contacts.empty() && std::abs(deepest(contacts) - (0.3 - kCentre)) < realTolerance(1e-9);  // ODE's collider
     };
     REQUIRE(usesItsOwnHull(geoms[warm], warm, ground));  // its memo verified at this very pose
     giveOtherData(geoms[warm]);

@@ -2,6 +2,7 @@
 // cubes, a composite gear; and collide() from several threads at once.
 #include <gdcontact/ode.hpp>
 
+#include "ode_precision.hpp"
 #include "ode_support.hpp"
 #include "stack_scene.hpp"
 
@@ -161,7 +162,7 @@ TEST_CASE("two exactly touching convex cubes: a valid normal, depth 0, and ODE s
     const auto contacts = collideThroughOde(upper, lower, 8);
     REQUIRE(!contacts.empty());
     for (const dContactGeom& contact : contacts) {
-        CHECK((toVec(contact.normal) - Vec3::UnitZ()).norm() < 1e-12);
+        CHECK((toVec(contact.normal) - Vec3::UnitZ()).norm() < realTolerance(1e-12));
         CHECK(contact.depth == 0.0);
     }
     // ODE's Dantzig solver prints "LCP internal error" for a first step whose contacts all have
