@@ -59,7 +59,7 @@ inline std::pair<Pose, Pose> randomTouchingPoses(std::mt19937& random, const Pol
     return {poseA, Pose{poseA.rotation * bInA.rotation, poseA.apply(bInA.position)}};
 }
 
-/// The hulls every faster general path is proven on: a cube and a plank as hulls (their faces
+/// The hulls the pipeline's property tests run on: a cube and a plank as hulls (their faces
 /// overhang each other), a box, two random clouds (24 and 10 points) and a 300-point hull.
 struct ProvingHulls {
     explicit ProvingHulls(std::mt19937& random)
@@ -71,24 +71,6 @@ struct ProvingHulls {
           boulder(Polytope::fromPoints(randomCloud(random, 300, Vec3(0.6, 0.6, 0.6)))) {}
     Polytope cubeHull, plankHull, box, rock, pebble, boulder;
 };
-
-/// Requires two answers for one pose to be the same manifold: the same count and features, and the
-/// normal, positions and depths within `tolerance` of `size` (the pair's); returns their largest
-/// difference (relative to size).
-inline double requireSameManifold(const Manifold& x, const Manifold& y, double size, double tolerance) {
-    REQUIRE(x.pointCount == y.pointCount);
-    REQUIRE(x.featureA.type == y.featureA.type);
-    REQUIRE(x.featureA.index == y.featureA.index);
-    REQUIRE(x.featureB.type == y.featureB.type);
-    REQUIRE(x.featureB.index == y.featureB.index);
-    double difference = x.empty() ? 0.0 : (x.normal - y.normal).norm();
-    for (int k = 0; k < x.pointCount; ++k) {
-        difference = std::max(difference, (x.points[k].position - y.points[k].position).norm() / size);
-        difference = std::max(difference, std::abs(x.points[k].depth - y.points[k].depth) / size);
-    }
-    REQUIRE(difference <= tolerance);
-    return difference;
-}
 
 /// Runs `collide` — (a, poseA, b, poseB, settings) → Manifold — on `count` random touching poses of
 /// a and b (every other one resting; overlaps up to `maxOverlap` of the pair's size, and up to 0.2
