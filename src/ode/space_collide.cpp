@@ -46,9 +46,6 @@
 namespace gdc::ode {
 namespace {
 
-using detail::Job;
-using detail::WorkerPool;
-using detail::workerPool;
 using detail::Pair;
 using detail::Scratch;
 using detail::Slot;

@@ -17,7 +17,11 @@
 #include <thread>
 #include <vector>
 
-namespace gdc::ode::detail {
+namespace gdc::ode {
+// Internal linkage, as everything of spaceCollide's own: the pool's types appear in template
+// instantiations (std::thread's state for the worker lambda) that would otherwise be exported from
+// libgdcontact.so. Included by space_collide.cpp alone.
+namespace {
 
 // One parallel loop over indices that a producer publishes while the loop runs: body(context,
 // begin, end) in chunks, taken in any order by any participant (each index writes only its own
@@ -145,6 +149,10 @@ private:
 };
 
 /// The process's one pool (threads start on first use, stop at exit).
-WorkerPool& workerPool();
+WorkerPool& workerPool() {
+    static WorkerPool pool;
+    return pool;
+}
 
-}  // namespace gdc::ode::detail
+}  // namespace
+}  // namespace gdc::ode
