@@ -129,7 +129,7 @@ def sleep_lines(results, scenes):
         times[(r["scene"], r["stepper"], r["contender"], r["seed"])] = t if t >= 0 else math.inf
     lines = []
     for sc in scenes:
-        for stepper in sorted({k[1] for k in times}, key=lambda n: (STEPPER_ORDER.index(n.partition("/")[0]) if n.partition("/")[0] in STEPPER_ORDER else 9, n)):
+        for stepper in steppers_in({"stepper": k[1]} for k in times):
             seeds = [k[3] for k in times if k[:3] == (sc["scene"], stepper, "gdc") and (sc["scene"], stepper, "ode-box", k[3]) in times]
             if not seeds:
                 continue
