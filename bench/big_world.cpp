@@ -222,6 +222,15 @@ const std::vector<Contender>& contenders() {
         {"profile_mt", Kind::SpaceAll, false, true, true},     {"loop_cache", Kind::Loop, true, false, false},
         {"space_1t_cache", Kind::Space1, true, false, false},  {"space_mt_cache", Kind::SpaceAll, true, false, false},
     };
+    static const std::vector<Contender> built = [] {
+        if (gdc::ode::detail::spaceCollideProfilingBuilt()) return list;
+        std::cerr << "bench_big_world: built without GDCONTACT_PHASE_PROFILING: no profile contenders\n";
+        std::vector<Contender> unprofiled;
+        for (const Contender& c : list)
+            if (!c.profiled) unprofiled.push_back(c);
+        return unprofiled;
+    }();
+    return built;
     return list;
 }
 

@@ -1,9 +1,9 @@
-// The box–box path (box_box.cpp) against the general pipeline it replaces (collideGeneral): the
+// The box–box path (box_box.cpp) against the general pipeline (generalManifold): the
 // same manifold — normal, points, depths, count, features — on random poses of every kind of box
 // pair, and pinned cases where the two could part (a face exactly at the angular tolerance, a
 // very thin box, exactly touching boxes, coincident centres).
 #include "contact/box_box.hpp"
-#include "contact/collide_general.hpp"
+#include "general_pipeline.hpp"
 #include "box_poses.hpp"
 #include "contact_checks.hpp"
 #include "geometry/growth_distance.hpp"
@@ -31,8 +31,8 @@ struct Differences {
 // differs by more than `relative` × size.
 bool compare(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB, const Settings& settings,
              Differences& found, double relative = 1e-9) {
-    const Manifold fast = detail::collideBoxBox(a, poseA, b, poseB, settings);
-    const Manifold general = detail::collideGeneral(a, poseA, b, poseB, settings);
+    const Manifold fast = collide(a, poseA, b, poseB, settings);
+    const Manifold general = generalManifold(a, poseA, b, poseB, settings);
     ++found.poses;
     const double size = a.radius() + b.radius();
     bool same = fast.pointCount == general.pointCount && fast.featureA.type == general.featureA.type &&
@@ -239,7 +239,7 @@ TEST_CASE("box-box path equals the general pipeline on random poses of every kin
         const Pose world{randomRotation(random), Vec3(unit(random), unit(random), unit(random)) * 10};
         const Pose poseB{world.rotation * relative.rotation, world.apply(relative.position)};
         compare(a, world, b, poseB, settings, found);
-        const int count = detail::collideGeneral(a, world, b, poseB, settings).pointCount;
+        const int count = generalManifold(a, world, b, poseB, settings).pointCount;
         points += count;
         touching[int(kind)] += count > 0;
     }
@@ -268,7 +268,7 @@ TEST_CASE("box-box pinned: a face tilted exactly at the angular tolerance") {
         const double lowest = (rotation.transpose() * Vec3::UnitZ()).cwiseAbs().dot(Vec3(0.4, 0.3, 0.2));
         const Pose poseB{rotation, Vec3(0.1, 0.05, 0.5 + lowest - 1e-3)};
         REQUIRE(compare(base, Pose{}, top, poseB, settings, found));
-        const Manifold m = detail::collideBoxBox(base, Pose{}, top, poseB, settings);
+        const Manifold m = collide(base, Pose{}, top, poseB, settings);
         REQUIRE(m.pointCount > 0);
         CHECK(m.featureA.type == FeatureType::Face);  // A's top face: the normal lies along it
         CHECK(m.featureA.index == 5);
@@ -291,7 +291,7 @@ TEST_CASE("box-box pinned: a very thin box, exactly touching boxes, coincident c
         const Polytope cube = Polytope::box(Vec3(0.5, 0.5, 0.5)), small = Polytope::box(Vec3(0.25, 0.25, 0.25));
         const Pose touching{Mat3::Identity(), Vec3(0.1, 0.1, 0.75)};
         REQUIRE(compare(cube, Pose{}, small, touching, settings, found));
-        const Manifold m = detail::collideBoxBox(cube, Pose{}, small, touching, settings);
+        const Manifold m = collide(cube, Pose{}, small, touching, settings);
         REQUIRE(m.pointCount == 4);
         for (int i = 0; i < 4; ++i) CHECK(m.points[i].depth == 0);
         CHECK(m.normal == Vec3::UnitZ());
@@ -300,7 +300,7 @@ TEST_CASE("box-box pinned: a very thin box, exactly touching boxes, coincident c
         const Polytope a = Polytope::box(Vec3(0.5, 0.4, 0.3)), b = Polytope::box(Vec3(0.2, 0.6, 0.1));
         for (const Mat3& rotation : {Mat3(Mat3::Identity()), rotationAbout(Vec3(1, 1, 0).normalized(), 0.4)}) {
             REQUIRE(compare(a, Pose{}, b, Pose{rotation, Vec3::Zero()}, settings, found));
-            CHECK(detail::collideBoxBox(a, Pose{}, b, Pose{rotation, Vec3::Zero()}, settings).pointCount > 0);
+            CHECK(collide(a, Pose{}, b, Pose{rotation, Vec3::Zero()}, settings).pointCount > 0);
         }
     }
     SECTION("collide() dispatches boxes to the box path, other settings to the general pipeline") {

@@ -7,7 +7,7 @@
 // contact short of the penetration, nor a point off its body. The pairs: hull pairs whose faces
 // overhang (cube on plank), boxes through the general path, random and large hulls, and
 // near-spheres whose faces have caps.
-#include "contact/collide_general.hpp"
+#include "general_pipeline.hpp"
 #include "geometry/growth_distance.hpp"
 #include "contact_checks.hpp"
 #include "sanitizer_scale.hpp"
@@ -24,7 +24,7 @@ constexpr int kPoses = scaledForSanitizers(100000);
 
 void checkOn(const char* name, const Polytope& a, const Polytope& b, std::uint32_t seed, bool deepEveryThird) {
     requireContactContract("contact contract, general pipeline", name, a, b, kPoses, seed, 0.03, deepEveryThird,
-                           [](auto&&... args) { return detail::collideGeneral(args...); });
+                           [](auto&&... args) { return generalManifold(args...); });
 }
 
 }  // namespace

@@ -1,9 +1,9 @@
 // The polytope–half-space specialised path (src/contact/half_space.cpp) against the general one
-// (detail::collideGeneral): the same Manifold — normal, points in order, depths, count, features —
+// (generalManifold, the general hooks): the same Manifold — normal, points in order, depths, count, features —
 // on random poses of boxes and hulls, and the same errors; pinned where the two could part (a face
 // tilted exactly at the angular tolerance, an exact touch, a box with one tiny extent), and the
 // box layout the closed form relies on.
-#include "contact/collide_general.hpp"
+#include "general_pipeline.hpp"
 #include "contact/gauss_map.hpp"
 #include "geometry_oracles.hpp"
 #include "contact/half_space.hpp"
@@ -71,11 +71,14 @@ void compareOne(const Polytope& shape, const Pose& pose, const HalfSpace& plane,
                 Differences& differences) {
     const double size = shape.radius();
     ++differences.poses;
-    const Manifold general = detail::collideGeneral(shape, pose, plane, settings);
+    const Manifold general = generalManifold(shape, pose, plane, settings);
     requireSame(general, collide(shape, pose, plane, settings), size, differences);
     if (detail::halfSpaceFastPathApplies(shape, settings)) {
         ++differences.fastPath;
-        requireSame(general, detail::collideHalfSpace(shape, pose, plane, settings), size, differences);
+        Manifold fast;
+        detail::collideHalfSpaceInto<detail::ImportanceOrder::Full>(shape, pose, detail::enterHalfSpace(pose, plane),
+                                                                    settings, nullptr, fast);
+        requireSame(general, fast, size, differences);
     }
 }
 
@@ -319,7 +322,7 @@ TEST_CASE("half-space: settings outside the specialised path's range go to the g
             for (const Polytope* shape : {&box, &hull}) {
                 const Pose pose = randomPose(*shape, n, 0.0, random);
                 const double size = shape->radius();
-                requireSame(detail::collideGeneral(*shape, pose, HalfSpace{n, 0.0}, settings),
+                requireSame(generalManifold(*shape, pose, HalfSpace{n, 0.0}, settings),
                             collide(*shape, pose, HalfSpace{n, 0.0}, settings), size, differences);
             }
         }
@@ -343,7 +346,7 @@ TEST_CASE("half-space: a face tilted exactly at the angular tolerance is a face,
         for (double cosine : {tolerance.cosine, std::nextafter(tolerance.cosine, 0.0), std::nextafter(tolerance.cosine, 1.0)})
             for (double height : {0.5, 0.49, 0.5 * (cosine + std::sqrt(1 - cosine * cosine))}) {
                 const Pose pose = tiltedAbout(cosine, height);
-                requireSame(detail::collideGeneral(*shape, pose, ground, settings), collide(*shape, pose, ground, settings),
+                requireSame(generalManifold(*shape, pose, ground, settings), collide(*shape, pose, ground, settings),
                             shape->radius(), differences);
             }
     }
@@ -357,11 +360,11 @@ TEST_CASE("half-space: a face tilted exactly at the angular tolerance is a face,
         Mat3 rotation;
         rotation.row(0) = row1, rotation.row(1) = row2, rotation.row(2) = row3;
         const Pose pose{rotation, Vec3(0, 0, 0.5)};
-        const Manifold general = detail::collideGeneral(box, pose, ground, settings);
+        const Manifold general = generalManifold(box, pose, ground, settings);
         const Manifold fast = collide(box, pose, ground, settings);
         CHECK(general.featureA.type == (sine == tolerance.sine ? FeatureType::Edge : FeatureType::Vertex));
         requireSame(general, fast, 0.5, differences);
-        requireSame(detail::collideGeneral(hull, pose, ground, settings), collide(hull, pose, ground, settings), 0.5,
+        requireSame(generalManifold(hull, pose, ground, settings), collide(hull, pose, ground, settings), 0.5,
                     differences);
     }
 }
@@ -377,7 +380,7 @@ TEST_CASE("half-space: exactly touching, a face flat on the plane at depth 0") {
             CHECK(fast.featureA.type == FeatureType::Face);
             for (int i = 0; i < 4; ++i) CHECK(fast.points[i].depth == 0);
             Differences differences;
-            requireSame(detail::collideGeneral(shape, pose, ground, settings), fast, 0.5, differences);
+            requireSame(generalManifold(shape, pose, ground, settings), fast, 0.5, differences);
             CHECK(differences.position == 0);
             // A hair above: apart, no contact; with a margin, four speculative ones.
             const Pose above{Mat3::Identity(), pose.position + Vec3(0, 0, 1e-6)};
@@ -386,7 +389,7 @@ TEST_CASE("half-space: exactly touching, a face flat on the plane at depth 0") {
             margin.margin = 1e-5;
             const Manifold speculative = collide(shape, above, ground, margin);
             CHECK(speculative.pointCount == 4);
-            requireSame(detail::collideGeneral(shape, above, ground, margin), speculative, 0.5, differences);
+            requireSame(generalManifold(shape, above, ground, margin), speculative, 0.5, differences);
         }
     }
 }
@@ -454,14 +457,14 @@ TEST_CASE("half-space: the specialised path refuses bad input with the general p
     for (const Polytope* shape : {&box, &hull})
         for (const Case& c : cases) {
             INFO("position " << c.pose.position.transpose() << " plane " << c.plane.normal.transpose() << " | " << c.plane.offset);
-            const std::string general = errorOf([&] { detail::collideGeneral(*shape, c.pose, c.plane, Settings{}); });
-            const std::string fast = errorOf([&] { detail::collideHalfSpace(*shape, c.pose, c.plane, Settings{}); });
+            const std::string general = errorOf([&] { generalManifold(*shape, c.pose, c.plane, Settings{}); });
+            const std::string fast = errorOf([&] { collide(*shape, c.pose, c.plane, Settings{}); });
             CHECK(fast == general);
             errors += !general.empty();
             if (general.empty()) {
                 Differences differences;
-                requireSame(detail::collideGeneral(*shape, c.pose, c.plane, Settings{}),
-                            detail::collideHalfSpace(*shape, c.pose, c.plane, Settings{}), shape->radius(), differences);
+                requireSame(generalManifold(*shape, c.pose, c.plane, Settings{}),
+                            collide(*shape, c.pose, c.plane, Settings{}), shape->radius(), differences);
             }
         }
     CHECK(errors >= 2 * 9);
@@ -494,7 +497,7 @@ TEST_CASE("half-space: exact ties between a box's axes go where selectFeature se
                         double lowest = INFINITY;
                         for (const Vec3& v : shape->vertices()) lowest = std::min(lowest, (rotation * v).z());
                         const Pose pose{rotation, Vec3(0, 0, -1e-3 - lowest)};
-                        const Manifold general = detail::collideGeneral(*shape, pose, ground, settings);
+                        const Manifold general = generalManifold(*shape, pose, ground, settings);
                         edges += general.featureA.type == FeatureType::Edge;
                         requireSame(general, collide(*shape, pose, ground, settings), shape->radius(), differences);
                     }

@@ -5,7 +5,7 @@
 // contact contract (touching_poses.hpp, requireContactContract) on 10^5 random poses of each pair
 // type that reaches the enumeration and on exactly parallel faces, the early out's bound against
 // the searches it spares, and stage 2's face proof against the search.
-#include "contact/collide_general.hpp"
+#include "general_pipeline.hpp"
 #include "geometry/minkowski.hpp"
 #include "geometry/hull_gauge.hpp"
 #include "contact/gauss_map.hpp"
@@ -23,7 +23,7 @@ constexpr int kPoses = scaledForSanitizers(100000);
 
 void checkOn(const char* name, const Polytope& a, const Polytope& b, std::uint32_t seed) {
     requireContactContract("hull enumeration carried", name, a, b, kPoses, seed, 0.03, /*deepEveryThird=*/true,
-                           [](auto&&... args) { return detail::collideGeneral(args...); });
+                           [](auto&&... args) { return generalManifold(args...); });
 }
 
 // Faces of A and B exactly parallel (B turned like A, or like A and then a quarter turn about A's z):
@@ -49,7 +49,7 @@ void checkAligned(const char* name, const Polytope& a, const Polytope& b, std::u
         const Pose poseB{poseA.rotation * turn, poseA.apply(offset)};
         Settings settings;
         settings.maxContacts = 1 + i % kMaxManifoldPoints;
-        const Manifold x = detail::collideGeneral(a, poseA, b, poseB, settings);
+        const Manifold x = generalManifold(a, poseA, b, poseB, settings);
         INFO(name << " pose " << i << " normal " << x.normal.transpose() << " features " << int(x.featureA.type) << ":"
                   << x.featureA.index << " " << int(x.featureB.type) << ":" << x.featureB.index);
         if (x.empty()) continue;

@@ -25,11 +25,6 @@
 namespace gdc::detail {
 namespace {
 
-// Largest angular tolerance served (rad): below π/4 a box face's neighbours on the Gauss map (90°
-// away) are more than twice the tolerance away, so no face has a cap (faceCap) and no direction
-// is within the tolerance of two faces' normals on opposite sides of the box.
-constexpr double kMaxAngularTolerance = 0.7;
-
 // Whether the ray along n leaves A − B (B at `bInA`, all in A's frame) no later than `limit` plus
 // what a ray cast stopping within `castTolerance` of A − B can add: then the general pipeline's
 // depth confirmation cannot add a point. A − B is the zonotope spanned by the boxes' half-edges,
@@ -70,11 +65,6 @@ bool exitsBy(const Vec3& halfA, const Vec3& halfB, const Pose& bInA, const Vec3&
 
 }  // namespace
 
-bool boxBoxApplies(const Polytope& a, const Polytope& b, const Settings& settings) {
-    return a.isBox() && b.isBox() && settings.normalMethod == NormalMethod::GrowthDistance &&
-           settings.angularTolerance >= 0 && settings.angularTolerance <= kMaxAngularTolerance;
-}
-
 namespace {
 
 // The box pair's hooks for the one composition (pipeline.hpp): each stage in the boxes' closed
@@ -89,7 +79,6 @@ struct BoxPairHooks {
     LazyAngularTolerance angularTolerance{settings.angularTolerance};
 
     // Non-finite poses: the general pipeline says what is wrong.
-    static bool acceptsPoses(const Pose& poseA, const Pose& poseB) { return poseA.isFinite() && poseB.isFinite(); }
 
     // Stage 1: the closed-form growth distance of two boxes (coincident centres: the general
     // pipeline's fallback normal). Its bound of the face overlaps settles the overhang check.
@@ -153,35 +142,19 @@ struct BoxPairHooksIn : BoxPairHooks {
     explicit BoxPairHooksIn(const Settings& settings) : BoxPairHooks(settings) {}
 };
 
-// The delegated rare cases keep the full ranking (collideGeneral): the same answer either way.
-template <class Hooks>
-void collideBoxBoxWith(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
-                       const Settings& settings, Manifold& manifold) {
-    Hooks hooks(settings);
-    if (composeStages(hooks, a, poseA, b, poseB, settings, manifold) == Composed::Delegate)
-        manifold.assignUsed(collideGeneral(a, poseA, b, poseB, settings));
-}
-
 }  // namespace
 
-void collideBoxBoxInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
-                       const Settings& settings, Manifold& manifold) {
-    collideBoxBoxWith<BoxPairHooks>(a, poseA, b, poseB, settings, manifold);
-}
-
+// The delegated rare cases keep the full ranking: the same answer either way.
 template <ImportanceOrder order>
 void collideBoxBoxInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
                        const Settings& settings, Manifold& manifold) {
-    collideBoxBoxWith<BoxPairHooksIn<order>>(a, poseA, b, poseB, settings, manifold);
+    BoxPairHooksIn<order> hooks(settings);
+    if (composeStages(hooks, a, poseA, b, poseB, settings, manifold) == Composed::Delegate)
+        collideGeneralInto<ImportanceOrder::Full>(a, poseA, b, poseB, settings, manifold);
 }
+template void collideBoxBoxInto<ImportanceOrder::Full>(const Polytope&, const Pose&, const Polytope&, const Pose&,
+                                                       const Settings&, Manifold&);
 template void collideBoxBoxInto<ImportanceOrder::AmongEqualDepths>(const Polytope&, const Pose&, const Polytope&,
                                                                    const Pose&, const Settings&, Manifold&);
-
-Manifold collideBoxBox(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
-                       const Settings& settings) {
-    Manifold manifold;
-    collideBoxBoxInto(a, poseA, b, poseB, settings, manifold);
-    return manifold;
-}
 
 }  // namespace gdc::detail

@@ -11,29 +11,26 @@
 
 namespace gdc::detail {
 
-/// Whether collideBoxBox serves this pair with these settings: two boxes (Polytope::isBox()), the
-/// growth-distance normal, and an angular tolerance in [0, 0.7] rad (below π/4, where a box's
-/// Gauss map gives each direction at most one face and no face a cap; larger tolerances go to
-/// the general pipeline).
-bool boxBoxApplies(const Polytope& a, const Polytope& b, const Settings& settings);
+/// Largest angular tolerance the box pair's hooks serve (rad): below π/4 a box face's neighbours on
+/// the Gauss map (90° away) are more than twice the tolerance away, so no face has a cap (faceCap)
+/// and no direction is within the tolerance of two faces' normals on opposite sides of the box.
+constexpr double kMaxBoxPairAngularTolerance = 0.7;
 
-/// The same manifold as collideGeneral (collide_general.hpp) — normal, points, depths, count and
-/// features, to rounding — for a pair boxBoxApplies() accepts: features from the box's Gauss map
-/// in closed form, faces and edges intersected in fixed arrays, and the depth confirmation's ray
-/// cast replaced by the exact exit of the ray through the zonotope A − B (run, with the rest of
-/// the general pipeline, only where that exit says the cast could add a point).
-Manifold collideBoxBox(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
-                       const Settings& settings);
+/// Whether collideBoxBoxInto serves this pair with these settings: two boxes (Polytope::isBox()),
+/// the growth-distance normal, and an angular tolerance in [0, kMaxBoxPairAngularTolerance] (larger
+/// tolerances go to the general pipeline). Inline: the pair table's cell asks on every call.
+inline bool boxBoxApplies(const Polytope& a, const Polytope& b, const Settings& settings) {
+    return a.isBox() && b.isBox() && settings.normalMethod == NormalMethod::GrowthDistance &&
+           settings.angularTolerance >= 0 && settings.angularTolerance <= kMaxBoxPairAngularTolerance;
+}
 
-/// collideBoxBox written into `out` (normal, pointCount, points [0, pointCount), features), for a
-/// caller that keeps its answer in a Manifold of its own (the ODE adapter): no 0.5 KB Manifold
-/// made and copied per call. On a throw `out` is unspecified.
-void collideBoxBoxInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
-                       const Settings& settings, Manifold& out);
-
-/// The same with the points in `order` (half_space.hpp's ImportanceOrder; instantiated for
-/// AmongEqualDepths, the ODE adapter's pair path: lift order where every point is kept and no two
-/// depths are equal, collide_general.hpp's emitInLiftOrder).
+/// The pair table's cell for two boxes where boxBoxApplies(): the general pipeline's three stages
+/// with the boxes' closed forms — features from the box's Gauss map, faces and edges intersected
+/// in fixed arrays, and the depth confirmation's ray cast replaced by the exact exit of the ray
+/// through the zonotope A − B (the general pipeline runs, whole, only in the rare cases: no
+/// growth-distance normal, a possible overhang, an empty intersection, a confirmation that may add
+/// a point). Written into `out` (normal, pointCount, points [0, pointCount), features), the points
+/// in `order` (half_space.hpp's ImportanceOrder). On a throw `out` is unspecified.
 template <ImportanceOrder order>
 void collideBoxBoxInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
                        const Settings& settings, Manifold& out);

@@ -1,15 +1,15 @@
 // The contact query: the general hooks of the paper's three stages (composed once, pipeline.hpp)
-// and collide()'s dispatch. Everything is computed in A's frame (precision far from the origin)
+// and the public queries, which go to the pair table (pair_table.hpp). Everything is computed in A's frame (precision far from the origin)
 // and mapped to the world at the end.
 #include <gdcontact/collide.hpp>
 
-#include "contact/box_box.hpp"
 #include "contact/collide_general.hpp"
 #include "contact/feature_geometry.hpp"
 #include "contact/feature_intersection.hpp"
 #include "contact/gauss_map.hpp"
 #include "geometry/growth_distance.hpp"
 #include "contact/half_space.hpp"
+#include "contact/pair_table.hpp"
 #include "contact/pipeline.hpp"
 #include "geometry/hull_gauge.hpp"
 #include "geometry/minkowski.hpp"
@@ -20,16 +20,6 @@
 #include <cmath>
 
 namespace gdc {
-namespace {
-
-using namespace detail;
-
-void requireFinite(const Pose& pose, const char* which) {
-    if (!pose.isFinite()) throw InvalidInput(std::string("the pose of ") + which + " is not finite");
-}
-
-}  // namespace
-
 namespace detail {
 
 namespace {
@@ -54,11 +44,6 @@ struct GeneralPairHooks {
     // With each feature its pieces: a face's cap, an edge's chain.
     SmallVector<int, 8> piecesA, piecesB;
 
-    static bool acceptsPoses(const Pose& poseA, const Pose& poseB) {
-        requireFinite(poseA, "A");
-        requireFinite(poseB, "B");
-        return true;
-    }
 
     // Stage 1: contact normal from the growth distance (or, to measure the trade, the SAT's).
     Stage1 growthNormal(const PairFrame& frame, const Vec3&) {
@@ -233,14 +218,6 @@ struct GeneralPairHooks {
 
 }  // namespace
 
-Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
-                        const Settings& settings) {
-    Manifold manifold;
-    GeneralPairHooks hooks(settings);
-    composeStages(hooks, a, poseA, b, poseB, settings, manifold);  // never delegates
-    return manifold;
-}
-
 namespace {
 // The general hooks (default paths) for a caller that needs the points only in `order`.
 template <ImportanceOrder order>
@@ -256,22 +233,27 @@ void collideGeneralInto(const Polytope& a, const Pose& poseA, const Polytope& b,
     GeneralPairHooksIn<order> hooks(settings);
     composeStages(hooks, a, poseA, b, poseB, settings, out);  // never delegates
 }
+template void collideGeneralInto<ImportanceOrder::Full>(const Polytope&, const Pose&, const Polytope&, const Pose&,
+                                                        const Settings&, Manifold&);
 template void collideGeneralInto<ImportanceOrder::AmongEqualDepths>(const Polytope&, const Pose&, const Polytope&,
                                                                     const Pose&, const Settings&, Manifold&);
 
 }  // namespace detail
 
-// The public queries: the specialised paths where they apply, the general pipeline otherwise.
+// The public queries: the pair table's cell for the shapes' kinds.
 Manifold collide(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
                  const Settings& settings) {
-    if (detail::boxBoxApplies(a, b, settings)) return detail::collideBoxBox(a, poseA, b, poseB, settings);
-    return detail::collideGeneral(a, poseA, b, poseB, settings);
+    Manifold manifold;
+    detail::collidePair(detail::Shape::of(a), poseA, detail::Shape::of(b), poseB, detail::PairQuery{settings}, manifold);
+    return manifold;
 }
 
 Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings) {
-    // Boxes and small hulls: a vertex loop, tested equal to the general path (half_space.hpp).
-    if (detail::halfSpaceFastPathApplies(a, settings)) return detail::collideHalfSpace(a, poseA, b, settings);
-    return detail::collideGeneral(a, poseA, b, settings);
+    const detail::UnitHalfSpace plane = detail::enterHalfSpace(poseA, b);
+    Manifold manifold;
+    detail::collidePair(detail::Shape::of(a), poseA, detail::Shape::of(plane), Pose{}, detail::PairQuery{settings},
+                        manifold);
+    return manifold;
 }
 
 }  // namespace gdc

@@ -1,5 +1,6 @@
-// The general pipeline of the paper, without the specialised paths (box–box, polytope–half-space
-// vertex loops): the reference every specialised path is tested equal to. collide() dispatches.
+// The general pipeline of the paper, without the kinds' closed forms (box–box, polytope–half-space
+// vertex loops): the cells of the pair table (pair_table.hpp) for hulls, and where those closed
+// forms do not apply.
 #pragma once
 
 #include <gdcontact/collide.hpp>
@@ -10,15 +11,6 @@
 #include "geometry/minkowski.hpp"
 
 namespace gdc::detail {
-
-/// The paper's three stages for any two polytopes (collide.cpp): the growth-distance normal (the
-/// hull enumeration for small pairs, the GJK ray cast otherwise), the Gauss-map features, their
-/// intersection in the contact plane with the depth confirmation.
-Manifold collideGeneral(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
-                        const Settings& settings);
-/// Gauss-map feature of A lifted onto the half-space, for any polytope (half_space.cpp: the
-/// half-space query with the general shape hooks).
-Manifold collideGeneral(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings);
 
 /// Writes the lifted points (A's frame) to the manifold in world coordinates, ranked by importance
 /// and reduced to settings.maxContacts (reduction.hpp: rankContacts, with the bodies' `centroids`
@@ -35,11 +27,19 @@ void emitManifold(const LiftedPoints& points, const Vec3& normal, const Pose& co
 bool emitInLiftOrder(const LiftedPoints& points, const Vec3& normal, const Pose& commonToWorld, const Settings& settings,
                      Manifold& manifold);
 
-/// collideGeneral(a, poseA, b, poseB, settings) written into `out`, the points in `order`
-/// (half_space.hpp's ImportanceOrder; instantiated for AmongEqualDepths, the ODE adapter's pair
-/// path). On a throw `out` is unspecified.
+/// The paper's three stages for any two polytopes (collide.cpp), written into `out`: the
+/// growth-distance normal (the hull enumeration for small pairs, the GJK ray cast otherwise), the
+/// Gauss-map features, their intersection in the contact plane with the depth confirmation; the
+/// points in `order` (half_space.hpp's ImportanceOrder). The cell of any pair with a hull, and
+/// where the boxes' closed forms do not apply or leave a rare case. Poses must be finite
+/// (pair_table.cpp checks them). On a throw `out` is unspecified.
 template <ImportanceOrder order>
 void collideGeneralInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
                         const Settings& settings, Manifold& out);
+
+/// Any polytope on a half-space (half_space.cpp, the general polytope-on-plane hooks: the support
+/// search and the Gauss map), written into `out`. poseA must be finite.
+void collideGeneralInto(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b, const Settings& settings,
+                        Manifold& out);
 
 }  // namespace gdc::detail

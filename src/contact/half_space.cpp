@@ -21,10 +21,6 @@
 namespace gdc::detail {
 namespace {
 
-[[gnu::always_inline]] inline void requireFinite(const Pose& pose) {
-    if (!pose.isFinite()) throw InvalidInput("the pose of A is not finite");
-}
-
 // What the three shapes' hooks share: a plane never delegates, never has its normal checked for
 // an overhang (it is exact), and its feature is its one face (its Gauss map is the single point −n).
 struct OnPlaneHooks {
@@ -150,95 +146,26 @@ void collideAnyPolytope(const HalfSpaceFrame& frame, const Pose& poseA, const Se
 
 }  // namespace
 
-namespace {
-
-// collideGeneral's normalisation, expression for expression (so to the bit): through the largest
-// component first, so that a finite normal of huge or tiny components neither overflows nor
-// underflows. A function of the half-space alone: its square root and six divisions in a chain were
-// a fifth of a box–plane call's time, which a caller with a fixed plane pays once
-// (normaliseHalfSpace). Inlined where the core's own query normalises on every call (called, it
-// cost that query 3 %, tests/ode/adapter_overhead.sh's core column).
-[[gnu::always_inline]] inline UnitHalfSpace normalised(const HalfSpace& b) {
-    const Vec3 magnitude = b.normal.cwiseAbs();
-    const double largest = std::max(std::max(magnitude.x(), magnitude.y()), magnitude.z());
-    if (!((b.normal * 0.0).sum() + b.offset * 0.0 == 0) || !(largest > 0))
-        throw InvalidInput("the half-space normal must be finite and non-zero");
-    // An axis-aligned unit normal (a ground plane) is its own normalisation: divided by 1 twice.
-    if (largest == 1 && b.normal.squaredNorm() == 1) return {b.normal, b.offset};
-    const double normalLength = (b.normal / largest).norm();
-    const Vec3 unitNormal = b.normal / largest / normalLength;
-    const double scaledOffset = b.offset / largest / normalLength;
-    if (!std::isfinite(scaledOffset))
-        throw InvalidInput("the half-space offset overflows double precision once its normal is normalised");
-    return {unitNormal, scaledOffset};
+void throwBadHalfSpace(bool overflow) {
+    throw InvalidInput(overflow ? "the half-space offset overflows double precision once its normal is normalised"
+                                : "the half-space normal must be finite and non-zero");
 }
 
-}  // namespace
-
-UnitHalfSpace normaliseHalfSpace(const HalfSpace& b) { return normalised(b); }
-
-namespace {
-
-// The entry points below, once A's pose is known finite.
-template <ImportanceOrder order = ImportanceOrder::Full>
-[[gnu::always_inline]] inline void collideNormalised(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b,
-                                                     const Settings& settings, const AngularTolerance* angularTolerance,
-                                                     Manifold& out) {
+template <ImportanceOrder order>
+void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b, const Settings& settings,
+                          const AngularTolerance* angularTolerance, Manifold& out) {
     a.isBox() ? collideBox<order>(a, poseA, b, settings, out)
               : collideSmallHull<order>(a, poseA, b, settings, angularTolerance, out);
 }
-
-}  // namespace
-
-void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings,
-                          Manifold& out) {
-    requireFinite(poseA);  // first: a bad pose is reported before a bad plane
-    collideNormalised(a, poseA, normalised(b), settings, nullptr, out);
-}
-
-void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b, const Settings& settings,
-                          Manifold& out) {
-    requireFinite(poseA);
-    collideNormalised(a, poseA, b, settings, nullptr, out);
-}
-
-void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b, const Settings& settings,
-                          const AngularTolerance& angularTolerance, Manifold& out) {
-    requireFinite(poseA);
-    collideNormalised(a, poseA, b, settings, &angularTolerance, out);
-}
-
-template <ImportanceOrder order>
-void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b, const Settings& settings,
-                          Manifold& out) {
-    requireFinite(poseA);
-    collideNormalised<order>(a, poseA, b, settings, nullptr, out);
-}
-
-template <ImportanceOrder order>
-void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b, const Settings& settings,
-                          const AngularTolerance& angularTolerance, Manifold& out) {
-    requireFinite(poseA);
-    collideNormalised<order>(a, poseA, b, settings, &angularTolerance, out);
-}
-
-template void collideHalfSpaceInto<ImportanceOrder::AmongEqualDepths>(const Polytope&, const Pose&,
-                                                                      const UnitHalfSpace&, const Settings&, Manifold&);
+template void collideHalfSpaceInto<ImportanceOrder::Full>(const Polytope&, const Pose&, const UnitHalfSpace&,
+                                                          const Settings&, const AngularTolerance*, Manifold&);
 template void collideHalfSpaceInto<ImportanceOrder::AmongEqualDepths>(const Polytope&, const Pose&,
                                                                       const UnitHalfSpace&, const Settings&,
-                                                                      const AngularTolerance&, Manifold&);
+                                                                      const AngularTolerance*, Manifold&);
 
-Manifold collideGeneral(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings) {
-    requireFinite(poseA);  // first: a bad pose is reported before a bad plane
-    Manifold manifold;
-    collideAnyPolytope(halfSpaceFrame(a, poseA, normalised(b)), poseA, settings, manifold);
-    return manifold;
-}
-
-Manifold collideHalfSpace(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings) {
-    Manifold manifold;
-    collideHalfSpaceInto(a, poseA, b, settings, manifold);
-    return manifold;
+void collideGeneralInto(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b, const Settings& settings,
+                        Manifold& out) {
+    collideAnyPolytope(halfSpaceFrame(a, poseA, b), poseA, settings, out);
 }
 
 }  // namespace gdc::detail

@@ -9,6 +9,9 @@
 
 #include "contact/gauss_map.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace gdc::detail {
 
 /// Largest Settings::angularTolerance (radians) the specialised path takes: below π/4, so that
@@ -25,7 +28,7 @@ constexpr double kSmallestBoxExtent = 1e-60, kLargestBoxExtent = 1e60;
 /// Most vertices of a hull the specialised path takes (its depths live on the stack).
 constexpr int kMaxSmallHullVertices = 64;
 
-/// Whether collideHalfSpace handles `polytope` under `settings`: a box of moderate extents, or a
+/// Whether collideHalfSpaceInto handles `polytope` under `settings`: a box of moderate extents, or a
 /// hull small enough for the brute-force support search, with an angular tolerance of at most
 /// kMaxHalfSpaceAngularTolerance (where a box's face cap is always the face alone). Inline: it
 /// runs on every call.
@@ -39,17 +42,30 @@ inline bool halfSpaceFastPathApplies(const Polytope& polytope, const Settings& s
     return vertexCount <= settings.bruteForceSupportLimit && vertexCount <= kMaxSmallHullVertices;
 }
 
-/// collideGeneral(a, poseA, b, settings) for the inputs halfSpaceFastPathApplies accepts.
-Manifold collideHalfSpace(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings);
-
-/// A half-space as collideHalfSpace (and collideGeneral) normalise it: the unit normal and the
-/// offset scaled with it (an axis-aligned unit normal kept as it is). Throws the InvalidInput they
-/// throw for a non-finite or zero normal, or an offset that overflows once scaled.
+/// A half-space normalised where it enters (the public collide(), the ODE adapter's plane cache):
+/// the unit normal and the offset scaled with it (an axis-aligned unit normal kept as it is).
+/// Throws InvalidInput for a non-finite or zero normal, or an offset that overflows once scaled.
 struct UnitHalfSpace {
     Vec3 normal;
     double offset;
 };
-UnitHalfSpace normaliseHalfSpace(const HalfSpace& b);
+[[noreturn, gnu::cold, gnu::noinline]] void throwBadHalfSpace(bool overflow);
+// Through the largest component first, so that a finite normal of huge or tiny components neither
+// overflows nor underflows. Inline: a public query normalises on every call. A function of the
+// half-space alone, so that a caller with a fixed plane (the ODE adapter's plane cache) pays its
+// square root and six divisions once.
+inline UnitHalfSpace normaliseHalfSpace(const HalfSpace& b) {
+    const Vec3 magnitude = b.normal.cwiseAbs();
+    const double largest = std::max(std::max(magnitude.x(), magnitude.y()), magnitude.z());
+    if (!((b.normal * 0.0).sum() + b.offset * 0.0 == 0) || !(largest > 0)) throwBadHalfSpace(false);
+    // An axis-aligned unit normal (a ground plane) is its own normalisation: divided by 1 twice.
+    if (largest == 1 && b.normal.squaredNorm() == 1) return {b.normal, b.offset};
+    const double normalLength = (b.normal / largest).norm();
+    const Vec3 unitNormal = b.normal / largest / normalLength;
+    const double scaledOffset = b.offset / largest / normalLength;
+    if (!std::isfinite(scaledOffset)) throwBadHalfSpace(true);
+    return {unitNormal, scaledOffset};
+}
 
 /// The order of a manifold's points a caller needs. Full: the importance order (the deepest
 /// first, every prefix the best of its length), as every query returns it. AmongEqualDepths: for a
@@ -61,31 +77,13 @@ UnitHalfSpace normaliseHalfSpace(const HalfSpace& b);
 /// reduction): the set of points is the same either way, and the depths to the bit.
 enum class ImportanceOrder { Full, AmongEqualDepths };
 
-/// collideHalfSpace written into `out` (every field a caller reads: normal, pointCount, points
-/// [0, pointCount), features), for a caller that keeps its answer in a Manifold of its own (the
-/// ODE adapter): no 0.5 KB Manifold made and copied per call. On a throw `out` is unspecified.
-void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const HalfSpace& b, const Settings& settings,
-                          Manifold& out);
-
-/// The same, for the half-space normaliseHalfSpace(b) made (a caller with a fixed plane normalises
-/// it once): the same answer, to the bit, as collideHalfSpaceInto(a, poseA, b, settings, out).
-void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b, const Settings& settings,
-                          Manifold& out);
-
-/// The same, with `angularTolerance` = AngularTolerance(settings.angularTolerance) given by a
-/// caller that keeps it across calls (the ODE adapter's thread cache), so that its cosine and sine
-/// are not recomputed per query. The same answer.
-void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b, const Settings& settings,
-                          const AngularTolerance& angularTolerance, Manifold& out);
-
-/// The two above with the points in `order` (instantiated for ImportanceOrder::AmongEqualDepths;
-/// Full is the functions above). A template argument, not a parameter: a seventh argument would go
-/// on the stack of every call.
+/// The contacts of a polytope A on the half-space b, for the inputs halfSpaceFastPathApplies
+/// accepts (a box's closed forms, a small hull's vertex loop), written into `out` (every field a
+/// caller reads: normal, pointCount, points [0, pointCount), features), the points in `order`.
+/// `angularTolerance`: AngularTolerance(settings.angularTolerance) kept by the caller, or nullptr.
+/// poseA must be finite (pair_table.cpp checks it). On a throw `out` is unspecified.
 template <ImportanceOrder order>
 void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b, const Settings& settings,
-                          Manifold& out);
-template <ImportanceOrder order>
-void collideHalfSpaceInto(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b, const Settings& settings,
-                          const AngularTolerance& angularTolerance, Manifold& out);
+                          const AngularTolerance* angularTolerance, Manifold& out);
 
 }  // namespace gdc::detail

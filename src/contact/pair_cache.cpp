@@ -1,8 +1,10 @@
 // collide() / collideInto() with a pair's cache: repeat the cached answer when nothing changed (exact), carry the
 // cached contacts along when the pair moved less than Settings::manifoldReuseDistance (opt-in),
-// query otherwise. The query itself is the ordinary collide(); this file only decides whether to
-// run it.
+// query otherwise. The query itself is the pair table's (pair_table.hpp), as collide()'s; this file
+// only decides whether to run it.
 #include <gdcontact/collide.hpp>
+
+#include "contact/pair_table.hpp"
 
 #include <cstring>
 
@@ -64,13 +66,13 @@ const Manifold* answerFromCache(PairCache& cache, const Pose& poseA, const Pose&
     return &carried;
 }
 
-// A full query into the cache, which then describes it. Emptied first: it stays empty if the
-// query throws.
-template <class Query>
-const Manifold& queryInto(PairCache& cache, PairCache::Kind kind, Query query) {
+// A full query (the pair table's cell) into the cache, which then describes it. Emptied first: it
+// stays empty if the query throws.
+const Manifold& queryInto(PairCache& cache, PairCache::Kind kind, const detail::Shape& a, const Pose& poseA,
+                          const detail::Shape& b, const Pose& poseB, const Settings& settings) {
     cache.kind = PairCache::Kind::Empty;
     cache.answer = CacheAnswer::Computed;
-    cache.manifold.assignUsed(query());
+    detail::collidePair(a, poseA, b, poseB, detail::PairQuery{settings}, cache.manifold);
     cache.kind = kind;
     return cache.manifold;
 }
@@ -87,7 +89,8 @@ const Manifold& collideInto(const Polytope& a, const Pose& poseA, const Polytope
         }, carried);
         if (answer) return *answer;
     }
-    const Manifold& answer = queryInto(cache, PairCache::Kind::Polytopes, [&] { return collide(a, poseA, b, poseB, settings); });
+    const Manifold& answer = queryInto(cache, PairCache::Kind::Polytopes, detail::Shape::of(a), poseA,
+                                       detail::Shape::of(b), poseB, settings);
     cache.shapeA = a.fingerprint();
     cache.shapeB = b.fingerprint();
     cache.poseA = poseA;
@@ -106,7 +109,10 @@ const Manifold& collideInto(const Polytope& a, const Pose& poseA, const HalfSpac
                                                  [&] { return motion(cache.poseA, poseA, reach(a)); }, carried);
         if (answer) return *answer;
     }
-    const Manifold& answer = queryInto(cache, PairCache::Kind::HalfSpace, [&] { return collide(a, poseA, b, settings); });
+    cache.kind = PairCache::Kind::Empty;  // a bad pose or plane throws here: the cache is emptied too
+    const detail::UnitHalfSpace plane = detail::enterHalfSpace(poseA, b);
+    const Manifold& answer =
+        queryInto(cache, PairCache::Kind::HalfSpace, detail::Shape::of(a), poseA, detail::Shape::of(plane), world, settings);
     cache.shapeA = a.fingerprint();
     cache.shapeB = 0;
     cache.poseA = poseA;

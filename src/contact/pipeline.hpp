@@ -17,7 +17,6 @@
 //       and no pieces (a box's), intersected in fixed arrays (intersectSmallFeatures);
 //   static constexpr bool kDelegatesRareCases — true: the overhang check and an empty intersection
 //       are not handled but returned as Composed::Delegate (the caller runs the general hooks);
-//   bool acceptsPoses(poseA, poseB)            — false: Delegate (or throw the input's error);
 //   Stage1 growthNormal(frame, centreOffset)   — the normal, its overlap and a bound for the check;
 //   void selectFeatures(frame, normal, first, manifold) — manifold.featureA/B for normal;
 //   bool preferNearbyFace(frame, normal, normalOverlap, manifold) — the overhang check proper (only
@@ -252,7 +251,6 @@ template <class Hooks>
 [[gnu::always_inline]] inline Composed composeStages(Hooks& hooks, const Polytope& a, const Pose& poseA,
                                                      const Polytope& b, const Pose& poseB, const Settings& settings,
                                                      Manifold& manifold) {
-    if (!hooks.acceptsPoses(poseA, poseB)) return Composed::Delegate;
     clearManifold(manifold);
     const Pose bInA = poseA.relative(poseB);
     const MinkowskiDifference pair(a, b, bInA, settings.bruteForceSupportLimit);

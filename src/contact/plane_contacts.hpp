@@ -32,13 +32,13 @@ struct PlaneInA {
     double depthOf(const Vec3& x) const { return offset - (m.x() * x.x() + m.y() * x.y() + m.z() * x.z()); }
 };
 
-// collideGeneral's change of frame, expression for expression (so to the bit), of the plane
+// the general hooks' change of frame, expression for expression (so to the bit), of the plane
 // normaliseHalfSpace made.
 inline PlaneInA planeInA(const UnitHalfSpace& b, const Pose& poseA) {
     return {poseA.rotation.transpose() * b.normal, b.offset - b.normal.dot(poseA.position)};
 }
 
-// The contacts as collideGeneral's `add` makes them (x lifted half its depth onto the plane), kept
+// The contacts as the general hooks' `add` makes them (x lifted half its depth onto the plane), kept
 // in fixed arrays when they cannot outnumber the caller's maximum, then ranked and written to the
 // manifold in the world frame as emitManifold writes them (no reduction: the centroid rule only
 // acts where points are dropped).
@@ -46,7 +46,7 @@ class DirectPoints {
 public:
     DirectPoints(const Vec3& m) : mx_(m.x()), my_(m.y()), mz_(m.z()) {}
     // Scalar code throughout (here and in emit): the same IEEE operations, in the same order, as
-    // the Eigen expressions collideGeneral evaluates (x + 0.5·depth·m; a dot product is
+    // the Eigen expressions the general hooks evaluate (x + 0.5·depth·m; a dot product is
     // (x₀y₀ + x₁y₁) + x₂y₂; R·x + p row by row, see emit), so the same bits (manifold_dump) — but without the packet
     // shuffles Eigen's SSE code spends on 3-vectors, which were the larger part of a box–plane
     // call's lifting and emitting.
@@ -153,7 +153,7 @@ private:
     int count_ = 0;
 };
 
-// The contacts gathered in A's frame as collideGeneral gathers them, then reduced and written as
+// The contacts gathered in A's frame as the general hooks gather them, then reduced and written as
 // its emit does: used when there may be more than the caller's maximum (or a cap's crossings
 // need the points found so far).
 class GatheredPoints {
@@ -190,11 +190,11 @@ struct PlaneLift {
     const Polytope& a;
     const PlaneInA& plane;
     const Settings& settings;
-    double tolerance;  // 1e-9 × A's radius, as in collideGeneral
+    double tolerance;  // 1e-9 × A's radius, as in the general hooks
     double keepDepth;  // −margin − tolerance
 
     // With Settings::spanContactRegion: where an edge runs from contact into a clear gap, the
-    // point where it crosses the contact depth (collideGeneral's addCrossing).
+    // point where it crosses the contact depth (the general hooks' addCrossing).
     template <class Points>
     void addCrossing(const Vec3& x, double depthX, const Vec3& y, double depthY, bool checkKnown, Points& points) const {
         const double t = contactBoundaryCrossing(depthX, depthY, -settings.margin, tolerance);
@@ -241,7 +241,7 @@ struct PlaneLift {
         }
     }
 
-    // The feature's points into the manifold, ranked (and reduced) as collideGeneral's emit does:
+    // The feature's points into the manifold, ranked (and reduced) as the general hooks' emit does:
     // in fixed arrays when they cannot outnumber the caller's maximum, gathered otherwise. A
     // tilted face whose points all float keeps the deepest vertex.
     // `order`: the order the caller needs (half_space.hpp).

@@ -11,9 +11,7 @@
 #include "ode_real.hpp"
 #include "thread_cache.hpp"
 #include "write_contacts.hpp"
-#include "contact/box_box.hpp"
-#include "contact/collide_general.hpp"
-#include "contact/half_space.hpp"
+#include "contact/pair_table.hpp"
 
 #include <algorithm>
 #include <array>
@@ -148,44 +146,30 @@ const gdc::detail::AngularTolerance& angularToleranceOf(detail::ThreadCache& cac
     return cache.angularTolerance;
 }
 
-// gdc::collide's answer written into `out`: its dispatch (collide.cpp) to the box–box, general and
-// half-space paths, whose answers are written in place — a Manifold returned by value is 0.5 KB
-// zeroed and then copied, a tenth of a box–plane call (tests/ode/adapter_overhead.sh). A plane the
-// core did not accept normalised (planeSlot) takes gdc::collide itself.
-// tests/ode/adapter_equality_test.cpp checks the adapter against gdc::collide on random poses of
-// every pair type.
-// The answer goes to writeContacts alone, which orders the points by depth, keeping the order of
-// equal depths: the core's importance order is asked for only among equal depths
-// (ImportanceOrder::AmongEqualDepths, half_space.hpp), so a face whose corners all have different
-// depths (every tilted resting face) is not ranked — the same contacts, in the same order.
-void queryInto(const Polytope& a, const Pose& poseA, const detail::ThreadCache::PlaneSlot& plane,
+// A fresh answer of the core, written into `out` by the pair table's cell (pair_table.hpp) — the
+// one dispatch gdc::collide and the pair cache use too — in place: a Manifold returned by value is
+// 0.6 KB zeroed and then copied. The answer goes to writeContacts alone, which orders the points by
+// depth, keeping the order of equal depths, with the caller's limit as the core's budget
+// (collideLimited): so the core's importance order is asked for only among equal depths
+// (ImportanceOrder::AmongEqualDepths, half_space.hpp) and a face whose corners all have different
+// depths (every tilted resting face) is not ranked — the same contacts, in the same order. A pair
+// cache's query keeps the full order. The plane's normalisation is the thread's (planeSlot), made
+// once per plane; a plane the core refuses is normalised here again, which throws its error.
+void queryInto(const gdc::detail::Shape& a, const Pose& poseA, const gdc::detail::Shape& b, const Pose& poseB,
                const Settings& settings, detail::ThreadCache& cache, Manifold& out) {
-    if (gdc::detail::halfSpaceFastPathApplies(a, settings)) {
-        if (plane.normalised) {
-            const gdc::detail::UnitHalfSpace& unit = plane.normalisedHalfSpace;
-            constexpr gdc::detail::ImportanceOrder order = gdc::detail::ImportanceOrder::AmongEqualDepths;
-            // A box's feature takes no AngularTolerance (its lazy bounds): the lookup only for hulls.
-            if (a.isBox()) return gdc::detail::collideHalfSpaceInto<order>(a, poseA, unit, settings, out);
-            return gdc::detail::collideHalfSpaceInto<order>(a, poseA, unit, settings,
-                                                            angularToleranceOf(cache, settings.angularTolerance), out);
-        }
-        return gdc::detail::collideHalfSpaceInto(a, poseA, plane.halfSpace, settings, out);
-    }
-    out.assignUsed(gdc::collide(a, poseA, plane.halfSpace, settings));
+    // Only a hull's feature search takes the angular tolerance's cosine and sine (a box's are lazy).
+    const bool hull = a.kind == gdc::detail::ShapeKind::Hull || b.kind == gdc::detail::ShapeKind::Hull;
+    const gdc::detail::PairQuery query{settings, gdc::detail::ImportanceOrder::AmongEqualDepths,
+                                       hull ? &angularToleranceOf(cache, settings.angularTolerance) : nullptr};
+    gdc::detail::collidePair(a, poseA, b, poseB, query, out);
 }
 
-// The pair's answer too goes to writeContacts alone, with the caller's limit as the core's budget
-// (collideLimited): the core's points are at most maxContacts, so writeContacts truncates none;
-// its filter drops points by their own depth and position only, and orders the rest by depth,
-// equal depths in the core's order. So the importance order reaches ODE only among equal depths,
-// swapped or not, in either ContactOrder: AmongEqualDepths (collide_general.hpp, emitInLiftOrder;
-// where the core drops points it ranks them in full). A pair cache's query keeps the full order.
-void queryInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB, const Settings& settings,
-                 Manifold& out) {
-    constexpr gdc::detail::ImportanceOrder order = gdc::detail::ImportanceOrder::AmongEqualDepths;
-    if (gdc::detail::boxBoxApplies(a, b, settings))
-        return gdc::detail::collideBoxBoxInto<order>(a, poseA, b, poseB, settings, out);
-    gdc::detail::collideGeneralInto<order>(a, poseA, b, poseB, settings, out);
+// A plane's pose in the core's call (it is ignored: a half-space lives in the world).
+const Pose kWorld{};
+
+gdc::detail::Shape planeShape(const detail::ThreadCache::PlaneSlot& plane) {
+    if (!plane.normalised) gdc::detail::normaliseHalfSpace(plane.halfSpace);  // throws why
+    return gdc::detail::Shape::of(plane.normalisedHalfSpace);
 }
 
 // The settings for one core call: `settings`, or a copy with the caller's smaller limit.
@@ -246,7 +230,9 @@ decltype(auto) collideLimited(const Settings& settings, int maxContacts, Collide
     const Manifold& manifold = collideLimited(settings, maxContacts, [&](const Settings& pairSettings) -> const Manifold& {
         return queryThrough(
             pairCache, o1, o2, cache.scratch, cache.carried,
-            [&](Manifold& out) { queryInto(polytope, pose, plane, pairSettings, cache, out); },
+            [&](Manifold& out) {
+                queryInto(gdc::detail::Shape::of(polytope), pose, planeShape(plane), kWorld, pairSettings, cache, out);
+            },
             [&](PairCache& entry, Manifold& carried) -> const Manifold& {
                 return gdc::collideInto(polytope, pose, plane.halfSpace, pairSettings, entry, carried);
             });
@@ -269,8 +255,9 @@ decltype(auto) collideLimited(const Settings& settings, int maxContacts, Collide
         return queryThrough(
             pairCache, o1, o2, cache.scratch, cache.carried,
             [&](Manifold& out) {
-                swapped ? queryInto(polytope2, pose2, polytope1, pose1, pairSettings, out)
-                        : queryInto(polytope1, pose1, polytope2, pose2, pairSettings, out);
+                const gdc::detail::Shape shape1 = gdc::detail::Shape::of(polytope1), shape2 = gdc::detail::Shape::of(polytope2);
+                swapped ? queryInto(shape2, pose2, shape1, pose1, pairSettings, cache, out)
+                        : queryInto(shape1, pose1, shape2, pose2, pairSettings, cache, out);
             },
             [&](PairCache& entry, Manifold& carried) -> const Manifold& {
                 return swapped ? gdc::collideInto(polytope2, pose2, polytope1, pose1, pairSettings, entry, carried)

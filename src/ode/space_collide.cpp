@@ -55,7 +55,12 @@ using detail::kFirstBlock;
 
 constexpr int kMaxThreads = 256;
 
-// The phase timing of space_collide_profile.hpp: off unless a benchmark asks.
+// The phase timing of space_collide_profile.hpp: compiled in with GDCONTACT_PHASE_PROFILING, and
+// then off unless a benchmark asks.
+#ifndef GDCONTACT_PHASE_PROFILING
+#define GDCONTACT_PHASE_PROFILING 0
+#endif
+constexpr bool kPhaseProfilingBuilt = GDCONTACT_PHASE_PROFILING;
 std::atomic<bool> profiling{false};
 thread_local detail::SpaceCollideProfile lastProfile;
 using ProfileClock = std::chrono::steady_clock;
@@ -264,7 +269,7 @@ void spaceCollide(dSpaceID space, int maxContactsPerPair, void* data, ContactHan
         throw InvalidInput("gdc::ode::spaceCollide: maxContactsPerPair must be in 1..65535, got " +
                            std::to_string(maxContactsPerPair));
 
-    const bool profile = profiling.load(std::memory_order_relaxed);
+    const bool profile = kPhaseProfilingBuilt && profiling.load(std::memory_order_relaxed);
     const auto callStart = profile ? ProfileClock::now() : ProfileClock::time_point{};
     ScratchLease lease;
     Scratch& scratch = *lease.scratch;
@@ -427,7 +432,13 @@ void spaceCollide(dSpaceID space, int maxContactsPerPair, void* data, ContactHan
 
 namespace detail {
 
-void setSpaceCollideProfiling(bool enabled) { profiling.store(enabled, std::memory_order_relaxed); }
+bool spaceCollideProfilingBuilt() { return kPhaseProfilingBuilt; }
+
+void setSpaceCollideProfiling(bool enabled) {
+    if (enabled && !kPhaseProfilingBuilt)
+        throw InvalidInput("gdcontact was built without GDCONTACT_PHASE_PROFILING: spaceCollide records no phase times");
+    profiling.store(enabled, std::memory_order_relaxed);
+}
 
 SpaceCollideProfile lastSpaceCollideProfile() { return lastProfile; }
 

@@ -1,7 +1,8 @@
 // Where gdc::ode::spaceCollide spends a call's time, for the big-world benchmark
-// (bench/big_world.cpp) and for anyone profiling a scene: off by default, and then the only cost
-// in the call is one relaxed atomic load. Not part of the public API (include/gdcontact/ode.hpp):
-// the phases are the implementation's, and may change with it.
+// (bench/big_world.cpp) and for anyone profiling a scene. Compiled in only with the build option
+// GDCONTACT_PHASE_PROFILING (scripts/bench turns it on); then off until asked, at the cost of one
+// relaxed atomic load per call. Not part of the public API (include/gdcontact/ode.hpp): the
+// phases are the implementation's, and may change with it.
 #pragma once
 
 #include <gdcontact/export.hpp>
@@ -27,7 +28,10 @@ struct SpaceCollideProfile {
                                       ///< (its wake-up latency); −1 when no pool thread took one
 };
 
-/// Turns the recording on or off for every later spaceCollide call (any thread).
+/// Whether this build records phases (GDCONTACT_PHASE_PROFILING).
+bool spaceCollideProfilingBuilt();
+/// Turns the recording on or off for every later spaceCollide call (any thread). Throws
+/// InvalidInput when asked to turn it on in a build without it.
 void setSpaceCollideProfiling(bool enabled);
 /// The calling thread's last spaceCollide call while recording was on.
 SpaceCollideProfile lastSpaceCollideProfile();

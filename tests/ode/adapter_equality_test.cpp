@@ -3,8 +3,8 @@
 // made from gdc::collide's manifold by ODE's convention as the adapter documents it (collide.cpp,
 // writeContacts): the normal from o2 into o1, points shallower than touching dropped, at most
 // the caller's limit of the core's best points (the core reduced to that limit), ordered by depth
-// (equal depths in the core's order of importance), depth clamped at 0. The adapter computes the
-// box–box and box–plane answers in place (detail::collideBoxBoxInto, collideHalfSpaceInto) and
+// (equal depths in the core's order of importance), depth clamped at 0. The adapter computes its
+// answers in place (detail::collidePair, with the plane normalised once per plane) and
 // skips the normal's square root where its squared length is exactly 1; this pins those shortcuts
 // to gdc::collide's own path — and the half-space path's face points, which the adapter has the
 // core rank only among equal depths (resting poses with exact ties among them), and likewise the
