@@ -354,11 +354,12 @@ namespace {
 //
 // The write of a manifold as dContactGeoms (src/ode/write_contacts.hpp) against the convention it
 // documents, spelled out with a stable sort: the points at least touching (depth ≥ −1e-9 of the
-// pair's size, widened to float's rounding where dReal is float: realTolerance) with a finite position, deepest first with equal depths in the core's order, the
-// touching tail dropped where a point overlaps, the first maxContacts of them, reversed for
-// DeepestFirst; the normal from o2 into o1 made unit (refused with no contact where it is off unit
-// by more than 1e-6), the depth clamped at 0, g1 = o1, g2 = o2, sides −1. Every manifold of 10^5
-// random poses of each pair type is written into arrays filled alike with random bytes: the slots
+// pair's size, widened to float's rounding where dReal is float: realTolerance) with a finite
+// position, deepest first with equal depths in the core's order, the touching tail dropped where a
+// point overlaps, the first maxContacts of them, reversed for DeepestFirst; the normal from o2
+// into o1 made unit (refused with no contact where it is off unit by more than 1e-6, or float's
+// rounding where dReal is float), the depth clamped at 0, g1 = o1, g2 = o2, sides −1. Every
+// manifold of 10^5 random poses of each pair type is written into arrays filled alike with random bytes: the slots
 // past the count and the bytes between contacts at a dContact stride must stay as they were. Each
 // call's other inputs are drawn too: either order of the pair, the contact limit, the stride
 // (dContactGeom or dContact), DeepestLast or DeepestFirst, a core answer or a carried one (then
@@ -407,7 +408,7 @@ void compareWrites(Manifold manifold, double sizeOfPair, std::mt19937_64& random
     switch (kindOf(random)) {  // the normal: a unit axis (squared length exactly 1), or off unit
         case 0: manifold.normal = Vec3::UnitZ() * (coin(random) ? 1.0 : -1.0); break;
         case 1: manifold.normal *= 1 + 1e-7; break;   // normalised again
-        case 2: manifold.normal *= 1 + 1e-5; ++result.invalidNormals; break;  // refused: no contacts
+        case 2: manifold.normal *= 1 + 2 * realTolerance(1e-6); ++result.invalidNormals; break;  // refused: no contacts
         default: break;
     }
     const dGeomID o1 = reinterpret_cast<dGeomID>(std::uintptr_t{0x1000} + static_cast<std::uintptr_t>(kindOf(random)) * 16);
@@ -420,7 +421,7 @@ void compareWrites(Manifold manifold, double sizeOfPair, std::mt19937_64& random
     // The convention, plainly.
     Vec3 normal = flip ? manifold.normal : Vec3(-manifold.normal);
     int wantCount = 0;
-    if (std::isfinite(normal.norm()) && std::abs(normal.norm() - 1.0) <= 1e-6) {
+    if (std::isfinite(normal.norm()) && std::abs(normal.norm() - 1.0) <= realTolerance(1e-6)) {
         normal /= normal.norm();
         std::vector<const ContactPoint*> kept;
         for (int i = 0; i < manifold.pointCount; ++i) {
