@@ -81,11 +81,15 @@ inline int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair,
     // The core's normal points from A towards B; ODE's from o2 into o1.
     Vec3 normal = flip ? manifold.normal : Vec3(-manifold.normal);
     // norm() is the square root of squaredNorm(): where that is exactly 1 the root is 1 and the
-    // division changes no bit, so both are skipped.
+    // division changes no bit, so both are skipped. A normal the core carried through a geom's
+    // rotation is off unit by as much as that rotation is off orthonormal: ~1e-16 from a
+    // double-precision ODE, up to ~1.2e-6 from a single-precision one (its integrator leaves a
+    // body's rotation a few float ulps off; 1e-6 refused such pairs: no contacts), so the limit
+    // scales with dReal's precision.
     const double squaredLength = normal.squaredNorm();
     if (squaredLength != 1.0) {
         const double length = std::sqrt(squaredLength);
-        if (!std::isfinite(length) || std::abs(length - 1.0) > 1e-6) {
+        if (!std::isfinite(length) || std::abs(length - 1.0) > inputRelativeTolerance(1e-6)) {
             dMessage(d_ERR_UNKNOWN, "gdcontact: the core returned an invalid normal; pair skipped");
             return 0;
         }

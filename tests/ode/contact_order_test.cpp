@@ -2,11 +2,14 @@
 // dJointAttach puts each new joint at the head of its bodies' joint lists, and the island walk
 // (ode/src/util.cpp, dxProcessIslands) follows those lists, so the solver meets a pair's contacts
 // in the reverse of their creation order; the adapter writes its array accordingly.
+#include "ode_precision.hpp"
 #include "ode_support.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <vector>
 
 using namespace gdc;
@@ -73,6 +76,7 @@ TEST_CASE("The solver meets a pair's contacts by depth, as Settings::contactOrde
 // touching ones stay (a box placed exactly on the floor keeps its four corners).
 TEST_CASE("A pair's touching contacts are left out where it has overlapping ones", "[ode][order]") {
     OdeSession session(true, Settings{});
+    int exercised = 0;  // tilted poses whose core answer has touching points beside overlapping ones
     for (const double tilt : {0.0, 1e-3, 0.02}) {
         for (const double yaw : {0.0, 0.4}) {
             dGeomID box = dCreateBox(nullptr, 1, 0.8, 0.6);
@@ -81,23 +85,52 @@ TEST_CASE("A pair's touching contacts are left out where it has overlapping ones
             dRFromAxisAndAngle(yawAboutZ, 0, 0, 1, yaw);
             dMultiply0_333(r, yawAboutZ, tiltAboutY);
             dGeomSetRotation(box, r);
-            // The higher bottom corners exactly on the plane z = 0, the lower ones sin(tilt)·0.5 deep.
-            dGeomSetPosition(box, 0.3, -0.2, 0.3 * std::cos(tilt) - 0.5 * std::sin(tilt));
             dGeomID plane = dCreatePlane(nullptr, 0, 0, 1, 0);
+            // The higher bottom corners on the plane z = 0, the lower ones sin(tilt) deep: exactly
+            // as far as dReal can place them. A single-precision ODE rounds the rotation and the
+            // height to float, which can leave the higher corners a few 1e-9 below the plane —
+            // overlapping, not touching, for the pose ODE holds — so there the height is raised by
+            // a float ulp at a time until the core finds them at depth ≤ 0. One float ulp of the
+            // height (3e-8) may then put them beyond the core's rounding of the plane: the core
+            // reports the two lower corners alone, and that pose does not exercise the rule (it is
+            // counted: some poses must). A double-precision ODE places them exactly: no step is taken.
+            const int overlappingWanted = tilt == 0 ? 0 : 2;
+            const auto overlappingOf = [](const Manifold& m) {
+                return static_cast<int>(std::count_if(m.points.begin(), m.points.begin() + m.pointCount,
+                                                      [](const ContactPoint& p) { return p.depth > 0; }));
+            };
+            dGeomSetPosition(box, 0.3, -0.2, 0.3 * std::cos(tilt) - 0.5 * std::sin(tilt));
+            Manifold core = gdc::collide(*polytopeOf(box), poseOf(box), HalfSpace{Vec3(0, 0, 1), 0});
+            for (int step = 0; step < 8 && !kOdeIsDouble && overlappingOf(core) > overlappingWanted; ++step) {
+                const dReal* position = dGeomGetPosition(box);
+                dGeomSetPosition(box, position[0], position[1], std::nextafter(position[2], dReal(1)));
+                core = gdc::collide(*polytopeOf(box), poseOf(box), HalfSpace{Vec3(0, 0, 1), 0});
+            }
             dContactGeom contacts[8] = {};
             const int count = dCollide(box, plane, 8, contacts, sizeof(dContactGeom));
-            const Manifold core = gdc::collide(*polytopeOf(box), poseOf(box), HalfSpace{Vec3(0, 0, 1), 0});
             INFO("tilt " << tilt << " yaw " << yaw);
-            REQUIRE(core.pointCount == 4);  // the bottom face, every corner within rounding of the plane or below
+            REQUIRE(overlappingOf(core) == overlappingWanted);
+            // The bottom face, every corner within rounding of the plane or below; or, in single
+            // precision, the lower corners alone where the higher ones are a float ulp above.
+            if (kOdeIsDouble || tilt == 0) REQUIRE(core.pointCount == 4);
+            REQUIRE((core.pointCount == 4 || core.pointCount == 2));
+            exercised += tilt != 0 && core.pointCount == 4;
+            const double touching = realTolerance(1e-9) * polytopeOf(box)->radius();  // the adapter's rule
+            for (int i = 0; i < core.pointCount; ++i) REQUIRE(core.points[i].depth >= -touching);
             if (tilt == 0) {
                 CHECK(count == 4);
                 for (int i = 0; i < count; ++i) CHECK(contacts[i].depth == 0);
             } else {
                 CHECK(count == 2);
-                for (int i = 0; i < count; ++i) CHECK(contacts[i].depth == Approx(std::sin(tilt)).epsilon(1e-9));
+                // Float's rounding of the pose (a box of size 1) where dReal is float.
+                const double slack = kOdeIsDouble ? 0.0 : realTolerance(1e-9);
+                for (int i = 0; i < count; ++i)
+                    CHECK(contacts[i].depth == Approx(std::sin(tilt)).epsilon(1e-9).margin(slack));
             }
             dGeomDestroy(plane);
             dGeomDestroy(box);
         }
     }
+    std::printf("touching contacts beside overlapping ones: %d of 4 tilted poses exercise the rule\n", exercised);
+    CHECK(exercised >= (kOdeIsDouble ? 4 : 1));
 }

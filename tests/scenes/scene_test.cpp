@@ -2,6 +2,7 @@
 // each scene's qualitative outcome, and the API's promises (determinism, run-time method switch,
 // removal, valid contacts).
 #include "scene.hpp"
+#include "ode_precision.hpp"  // kOdeIsDouble
 #include "ode_session.hpp"
 
 #include <gdcontact/ode.hpp>
@@ -11,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdarg>
+#include <cstdio>
 #include <map>
 #include <string>
 
@@ -136,6 +138,19 @@ TEST_CASE("every contact handed to ODE has a unit normal, a finite position and 
 
 TEST_CASE("box drop: the dropped box settles flat on the plane (dBox and dConvex)") {
     OdeSession ode;
+    // The solver's compliance: 1e-6 m of penetration at rest in a double-precision ODE. A
+    // single-precision ODE's solver, in float, rests the box deeper; there ODE's own colliders on
+    // the same dBox in the same ODE are the standard: within 1e-6 m or 1.5 times their penetration.
+    double penetrationLimit = 1e-6;
+    if (!gdc::ode::test::kOdeIsDouble) {
+        SceneOptions options;
+        options.method = Method::Ode;
+        auto reference = makeScene("box_drop", options);
+        reference->runUntil(reference->duration());
+        penetrationLimit = std::max(penetrationLimit, 1.5 * reference->measures().penetration);
+        std::printf("box drop, single-precision ODE: ODE's own collider rests the dBox %.3g m deep\n",
+                    reference->measures().penetration);
+    }
     for (bool convex : {false, true}) {
         SceneOptions options;
         options.convexBoxes = convex;
@@ -147,7 +162,7 @@ TEST_CASE("box drop: the dropped box settles flat on the plane (dBox and dConvex
         // "Flat": its lowest face within 0.1° of horizontal, its corners not sunk into the plane
         // beyond the solver's compliance, and at rest.
         CHECK(scene->measures().alignment < 1.75e-3);
-        CHECK(scene->measures().penetration < 1e-6);
+        CHECK(scene->measures().penetration < penetrationLimit);
         CHECK(scene->measures().speed < 1e-3);
     }
 }

@@ -3,6 +3,7 @@
 // and side by side (both worlds get the added body; each view draws its own debug overlay).
 #include "interaction.hpp"
 #include "image.hpp"
+#include "ode_precision.hpp"  // values read back through dReal
 #include "ode_session.hpp"
 #include "viewer.hpp"
 #include "viewer_test_support.hpp"
@@ -24,6 +25,12 @@ using gdc::viewer::test::positionOf;
 using gdc::viewer::test::testOptions;
 
 namespace {
+
+// A value read back from ODE (a body's position or velocity), of magnitude up to `scale`: within
+// 1e-9 in a double-precision ODE, within 64 float ulps of `scale` where dReal is float.
+double throughReal(double scale) {
+    return gdc::ode::test::kOdeIsDouble ? 1e-9 : gdc::ode::test::realTolerance(1e-9) * scale;
+}
 
 using gdc::testing::OdeSession;
 
@@ -173,7 +180,7 @@ TEST_CASE("dropping a box at the cursor adds one body over the ground point unde
     const Vec3 at = positionOf(dropped);
     INFO("dropped at " << at.transpose() << ", ground point " << ground.transpose());
     CHECK((at.head<2>() - ground.head<2>()).norm() < 1e-6);
-    CHECK(at.z() == Approx(1.05 * body.radius).epsilon(1e-9));
+    CHECK(at.z() == Approx(1.05 * body.radius).epsilon(gdc::ode::test::realTolerance(1e-9)));  // read through dReal
     CHECK(velocityOf(dropped).norm() == 0.0);
 
     // It falls and comes to rest on the ground, by the scene's own contacts.
@@ -223,9 +230,10 @@ TEST_CASE("a thrown body leaves the camera along the cursor ray at the throw spe
             REQUIRE(thrown != nullptr);
             CHECK(viewer.scene().bodies().size() == count + 1);
             const Vec3 start = positionOf(thrown);
-            CHECK((start - ray.origin).cross(ray.direction).norm() < 1e-9);  // on the ray
+            const double along = (start - ray.origin).norm();
+            CHECK((start - ray.origin).cross(ray.direction).norm() < throughReal(1.0 + along));  // on the ray
             CHECK((start - ray.origin).dot(ray.direction) > 0.0);           // in front of the eye
-            CHECK((velocityOf(thrown) - 9.0 * ray.direction).norm() < 1e-9);
+            CHECK((velocityOf(thrown) - 9.0 * ray.direction).norm() < throughReal(9.0));
             // One step later gravity has bent it by g·dt at most.
             viewer.simulate(0.01);
             CHECK((velocityOf(thrown) - 9.0 * ray.direction).norm() < 9.81 * 0.01 + 1e-9);
@@ -353,7 +361,7 @@ TEST_CASE("an OBJ composite dropped into a scene is one body of the file's parts
     // Scaled by 2: volumes × 8, mass at 1000 kg/m³.
     dMass mass;
     dBodyGetMass(maul, &mass);
-    CHECK(mass.mass == Approx(1000.0 * 8.0 * (2.7e-4 + 3.84e-4)).epsilon(1e-9));
+    CHECK(mass.mass == Approx(1000.0 * 8.0 * (2.7e-4 + 3.84e-4)).epsilon(gdc::ode::test::realTolerance(1e-9)));
     viewer.simulate(0.5);
     viewer.draw();
     CHECK(statistics(viewer.capture()).colouredPixels > 0);
@@ -473,9 +481,10 @@ TEST_CASE("side by side: a dropped or thrown body goes into both worlds alike, a
         CHECK(a.name == b.name);
         CHECK(a.parts.size() == 2);
         CHECK((positionOf(a.body) - positionOf(b.body)).norm() == 0.0);
-        CHECK((positionOf(b.body) - ray.origin).cross(ray.direction).norm() < 1e-9);  // on the right view's ray
-        CHECK((velocityOf(a.body) - 7.0 * ray.direction).norm() < 1e-9);
-        CHECK((velocityOf(b.body) - 7.0 * ray.direction).norm() < 1e-9);
+        CHECK((positionOf(b.body) - ray.origin).cross(ray.direction).norm() <
+              throughReal(1.0 + (positionOf(b.body) - ray.origin).norm()));  // on the right view's ray
+        CHECK((velocityOf(a.body) - 7.0 * ray.direction).norm() < throughReal(7.0));
+        CHECK((velocityOf(b.body) - 7.0 * ray.direction).norm() < throughReal(7.0));
     }
     SECTION("reset and the side-by-side toggle rebuild both worlds without the added body") {
         const Eigen::Vector2d pixel = pixelInView(viewer, 0, ground);

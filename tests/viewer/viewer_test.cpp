@@ -7,6 +7,7 @@
 // camera keeps the box in view.
 // ... and records every K-th frame as PNG.
 #include "image.hpp"
+#include "ode_precision.hpp"  // realTolerance: the grabbed point passes through dReal
 #include "ode_session.hpp"
 #include "viewer.hpp"
 #include "viewer_test_support.hpp"
@@ -146,7 +147,12 @@ TEST_CASE("dragging a body with the mouse pulls it towards the cursor") {
     REQUIRE(viewer.grab(pixel.x(), pixel.y()));
     REQUIRE(viewer.drag().body() == brick->body);
     const double grabToTarget = (viewer.drag().target() - viewer.drag().anchorWorld()).norm();
-    CHECK(grabToTarget < 1e-9);  // the spring starts relaxed at the grabbed point
+    // The spring starts relaxed at the grabbed point (read back through the body's pose in dReal).
+    // A single-precision ODE rounds that pose to float: 64 float ulps of the point's distance.
+    const double relaxed = gdc::ode::test::kOdeIsDouble
+                               ? 1e-9
+                               : gdc::ode::test::realTolerance(1e-9) * (1.0 + viewer.drag().target().norm());
+    CHECK(grabToTarget < relaxed);
     viewer.dragTo(pixel.x(), pixel.y() - 60.0);
     const Vec3 target = viewer.drag().target();
     const double startGap = (target - viewer.drag().anchorWorld()).norm();
