@@ -12,7 +12,7 @@ with the baseline (--baseline, default gdc), the order under test (--rule) and O
 - a verdict: "worse" where the rule collapses or fails more seeds than the other and p < 0.05 on
   that criterion, the other named; "more" where it has more but within seed noise.
 
-Usage: python3 -m gdcreport order RESULTS_DIR... [--rule CONTENDER] [--baseline CONTENDER]
+Usage: python3 -m gdcreport order RESULTS_DIR... [--rule CONTENDER] [--baseline CONTENDER] [--differing]
 """
 import argparse
 import os
@@ -29,6 +29,10 @@ def load(dirs):
     runs = defaultdict(dict)  # (scene, stepper, contender) -> seed -> (collapsed, failed, messages)
     scenes = []
     for d in dirs:
+        # The benchmark's scene order (its runs file follows the workers' order).
+        scenes_path = os.path.join(d, "solver_seeds_scenes.csv")
+        if os.path.exists(scenes_path):
+            scenes.extend(r["scene"] for r in read_csv(scenes_path) if r["scene"] not in scenes)
         for r in read_csv(os.path.join(d, "solver_seeds_runs.csv")):
             if r["scene"] not in scenes:
                 scenes.append(r["scene"])
@@ -50,6 +54,8 @@ def main(argv=None):
     parser.add_argument("dirs", nargs="+")
     parser.add_argument("--rule", default="gdc:contactOrder=DeepestFirstWhenLoaded")
     parser.add_argument("--baseline", default="gdc")
+    parser.add_argument("--differing", action="store_true",
+                        help="only the rows where the contenders' counts differ (the others listed after the table)")
     args = parser.parse_args(argv)
     runs, scenes = load(args.dirs)
     rule, base = args.rule, args.baseline
@@ -61,12 +67,13 @@ def main(argv=None):
     print(f"| scene | stepper | `{base}` | `{rule}` | ode-box | ode-convex | rule vs `{base}` | rule vs best ODE | verdict |")
     print("|---|---|---|---|---|---|---|---|---|")
     keys = {(scene, stepper) for (scene, stepper, _) in runs}
+    same = []
     for scene in scenes:
         stepper_rows = [{"stepper": st} for (sc, st) in keys if sc == scene]
         for stepper in steppers_in(stepper_rows):
             if (scene, stepper, rule) not in runs:
                 continue
-            cells = []
+            cells, counts = [], set()
             for c in contenders:
                 seeds = runs.get((scene, stepper, c))
                 if not seeds:
@@ -75,7 +82,11 @@ def main(argv=None):
                 fell = sum(v[0] for v in seeds.values())
                 failed = sum(v[1] for v in seeds.values())
                 messages = sum(v[2] for v in seeds.values())
+                counts.add((fell, failed, len(seeds)))
                 cells.append(f"{fell} · {failed} of {len(seeds)}" + (f" (+{messages} msgs)" if messages else ""))
+            if args.differing and len(counts) == 1 and not any("msgs" in cell for cell in cells):
+                same.append(f"{scene} {stepper_label(stepper)}: {cells[0]}")
+                continue
             mine = runs[(scene, stepper, rule)]
             verdict = []
 
@@ -102,6 +113,8 @@ def main(argv=None):
                     verdict.append(f"{'worse' if p < 0.05 else 'more'} than {best} ({word})")
             print(f"| {scene} | {stepper_label(stepper)} | " + " | ".join(cells) + f" | {versus_base} | "
                   + (" · ".join(best_cells) or "–") + f" | {'; '.join(verdict) or 'holds'} |")
+    if same:
+        print("\nThe same count for every contender (collapsed · failed): " + "; ".join(same) + ".")
 
 
 if __name__ == "__main__":

@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <vector>
 
 using namespace gdc;
@@ -15,11 +16,14 @@ using namespace gdc::ode::test;
 
 namespace {
 
-// A box tilted on a plane (four corners at four depths): the depths in the order of the body's
-// joint list, after one joint per contact was created and attached in the array's order.
-std::vector<double> depthsInJointListOrder(ContactOrder order) {
-    Settings settings;
-    settings.contactOrder = order;
+// A box of sides 1 × 0.8 × 0.6 (a body), turned by the Euler angles `tilt` so that its four bottom
+// corners lie at four depths (by default within 1.02 mm of each other: all four overlap from
+// 1.02 mm on), its lowest corner `deepest` below z = 0, against: a plane z = 0,
+// or a static box of sides 2 × 2 × 0.4 whose top face is z = 0. The depths in the order of the
+// body's joint list (the order dWorldQuickStep meets them), after a joint per contact was created
+// and attached in the array's order.
+std::vector<double> depthsMetOn(const Settings& settings, bool onBox, double deepest,
+                                std::array<double, 3> tilt = {0.0004, 0.0007, 0.3}) {
     OdeSession session(true, settings);
     dWorldID world = dWorldCreate();
     dJointGroupID group = dJointGroupCreate(0);
@@ -27,47 +31,7 @@ std::vector<double> depthsInJointListOrder(ContactOrder order) {
     dGeomID box = dCreateBox(nullptr, 1, 0.8, 0.6);
     dGeomSetBody(box, body);
     dMatrix3 r;
-    dRFromEulerAngles(r, 0.01, 0.02, 0.3);
-    dBodySetRotation(body, r);
-    dBodySetPosition(body, 0, 0, 0.28);
-    dGeomID plane = dCreatePlane(nullptr, 0, 0, 1, 0);
-    dContact contacts[8] = {};
-    const int count = dCollide(box, plane, 8, &contacts[0].geom, sizeof(dContact));
-    std::vector<dJointID> joints;
-    for (int i = 0; i < count; ++i) {
-        joints.push_back(dJointCreateContact(world, group, &contacts[i]));
-        dJointAttach(joints.back(), body, nullptr);
-    }
-    std::vector<double> depths;
-    REQUIRE(dBodyGetNumJoints(body) == count);
-    for (int k = 0; k < count; ++k) {
-        dJointID joint = dBodyGetJoint(body, k);
-        // The head of the list is the joint created last.
-        CHECK(joint == joints[static_cast<std::size_t>(count - 1 - k)]);
-        depths.push_back(contacts[count - 1 - k].geom.depth);
-    }
-    dGeomDestroy(plane);
-    dGeomDestroy(box);
-    dJointGroupDestroy(group);
-    dWorldDestroy(world);
-    return depths;
-}
-
-// A box of sides 1 × 0.8 × 0.6 (a body), turned a little about each axis so that its four bottom
-// corners lie at four depths (within 1.02 mm of each other, so all four overlap), its lowest
-// corner `deepest` below z = 0, against: a plane
-// z = 0, or a static box of sides 2 × 2 × 0.4 whose top face is z = 0. The depths in the order of
-// the body's joint list (the order dWorldQuickStep meets them), after a joint per contact was
-// created and attached in the array's order.
-std::vector<double> depthsMetOn(const Settings& settings, bool onBox, double deepest) {
-    OdeSession session(true, settings);
-    dWorldID world = dWorldCreate();
-    dJointGroupID group = dJointGroupCreate(0);
-    dBodyID body = dBodyCreate(world);
-    dGeomID box = dCreateBox(nullptr, 1, 0.8, 0.6);
-    dGeomSetBody(box, body);
-    dMatrix3 r;
-    dRFromEulerAngles(r, 0.0004, 0.0007, 0.3);
+    dRFromEulerAngles(r, tilt[0], tilt[1], tilt[2]);
     dBodySetRotation(body, r);
     double lowest = 0;  // the lowest corner's height above the centre: r's third row · the corner
     for (int corner = 0; corner < 8; ++corner) {
@@ -79,10 +43,18 @@ std::vector<double> depthsMetOn(const Settings& settings, bool onBox, double dee
     if (onBox) dGeomSetPosition(other, 0, 0, -0.2);
     dContact contacts[8] = {};
     const int count = dCollide(box, other, 8, &contacts[0].geom, sizeof(dContact));
-    for (int i = 0; i < count; ++i) dJointAttach(dJointCreateContact(world, group, &contacts[i]), body, nullptr);
+    std::vector<dJointID> joints;
+    for (int i = 0; i < count; ++i) {
+        joints.push_back(dJointCreateContact(world, group, &contacts[i]));
+        dJointAttach(joints.back(), body, nullptr);
+    }
     std::vector<double> depths;
     REQUIRE(dBodyGetNumJoints(body) == count);
-    for (int k = 0; k < count; ++k) depths.push_back(contacts[count - 1 - k].geom.depth);  // the list's head: the last made
+    for (int k = 0; k < count; ++k) {
+        // The head of the list is the joint created last.
+        CHECK(dBodyGetJoint(body, k) == joints[static_cast<std::size_t>(count - 1 - k)]);
+        depths.push_back(contacts[count - 1 - k].geom.depth);
+    }
     dGeomDestroy(other);
     dGeomDestroy(box);
     dJointGroupDestroy(group);
@@ -130,6 +102,12 @@ TEST_CASE("DeepestFirstWhenLoaded meets a loaded pair deepest first and a lightl
 }
 
 TEST_CASE("The solver meets a pair's contacts by depth, as Settings::contactOrder says", "[ode][order]") {
+    // Tilted further (bottom corners up to 2.8 cm apart), the lowest 3 cm deep: four depths.
+    const auto depthsInJointListOrder = [](ContactOrder order) {
+        Settings settings;
+        settings.contactOrder = order;
+        return depthsMetOn(settings, false, 0.03, {0.01, 0.02, 0.3});
+    };
     const std::vector<double> first = depthsInJointListOrder(ContactOrder::DeepestFirst);
     REQUIRE(first.size() == 4);
     CHECK(std::is_sorted(first.rbegin(), first.rend()));  // deepest first
