@@ -12,10 +12,11 @@ with the baseline (--baseline, default gdc), the order under test (--rule) and O
 - a verdict: "worse" where the rule collapses or fails more seeds than the other and p < 0.05 on
   that criterion, the other named; "more" where it has more but within seed noise.
 
-Usage: python3 -m gdcreport order RESULTS_DIR... [--rule CONTENDER] [--baseline CONTENDER] [--differing]
+Usage: python3 -m gdcreport order RESULTS_DIR... [--rule CONTENDER] [--baseline CONTENDER] [--differing] [--drift]
 """
 import argparse
 import os
+import statistics
 from collections import defaultdict
 
 from gdcreport.data import read_csv
@@ -37,7 +38,7 @@ def load(dirs):
             if r["scene"] not in scenes:
                 scenes.append(r["scene"])
             runs[(r["scene"], r["stepper"], r["contender"])][int(r["seed"])] = (
-                r.get("collapsed") == "1", r["failed"] == "1", int(r["messages"]))
+                r.get("collapsed") == "1", r["failed"] == "1", int(r["messages"]), float(r["drift"]))
     return runs, scenes
 
 
@@ -54,6 +55,8 @@ def main(argv=None):
     parser.add_argument("dirs", nargs="+")
     parser.add_argument("--rule", default="gdc:contactOrder=DeepestFirstWhenLoaded")
     parser.add_argument("--baseline", default="gdc")
+    parser.add_argument("--drift", action="store_true",
+                        help="also the drift table: mean and median drift per contender, the rule paired with each")
     parser.add_argument("--differing", action="store_true",
                         help="only the rows where the contenders' counts differ (the others listed after the table)")
     args = parser.parse_args(argv)
@@ -115,6 +118,38 @@ def main(argv=None):
                   + (" · ".join(best_cells) or "–") + f" | {'; '.join(verdict) or 'holds'} |")
     if same:
         print("\nThe same count for every contender (collapsed · failed): " + "; ".join(same) + ".")
+    if args.drift:
+        drift_table(runs, scenes, rule, contenders)
+
+
+def drift_table(runs, scenes, rule, contenders):
+    """The drift (the largest horizontal distance of a body from its start at the end, m): mean and
+    median per contender, and per other contender the seeds where the rule drifts farther / less
+    with the sign test's p."""
+    print("\nDrift (m), mean / median over seeds; paired: seeds where the rule drifts farther / less (p).\n")
+    others = [c for c in contenders if c != rule]
+    print("| scene | stepper | " + " | ".join(f"`{c}`" for c in contenders) + " | "
+          + " | ".join(f"rule vs `{c}`" for c in others) + " |")
+    print("|" + "---|" * (2 + len(contenders) + len(others)))
+    for scene in scenes:
+        steppers = steppers_in([{"stepper": st} for (sc, st, c) in runs if sc == scene and c == rule])
+        for stepper in steppers:
+            cells, pairs = [], []
+            for c in contenders:
+                seeds = runs.get((scene, stepper, c))
+                cells.append(f"{statistics.mean(v[3] for v in seeds.values()):.3g} / "
+                             f"{statistics.median(v[3] for v in seeds.values()):.3g}" if seeds else "–")
+            mine = runs[(scene, stepper, rule)]
+            for c in others:
+                theirs = runs.get((scene, stepper, c))
+                if not theirs:
+                    pairs.append("–")
+                    continue
+                common = set(mine) & set(theirs)
+                farther = sum(mine[s][3] > theirs[s][3] for s in common)
+                less = sum(mine[s][3] < theirs[s][3] for s in common)
+                pairs.append(f"{farther} / {less} ({sign_test(farther, less):.2g})")
+            print(f"| {scene} | {stepper_label(stepper)} | " + " | ".join(cells) + " | " + " | ".join(pairs) + " |")
 
 
 if __name__ == "__main__":
