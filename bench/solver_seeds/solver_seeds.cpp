@@ -94,8 +94,11 @@ const std::vector<SettingField>& settingFields() {
         {"contactOrder", [](gdc::Settings& s, const std::string& v) {
              if (v == "DeepestLast" || v == "0") s.contactOrder = gdc::ContactOrder::DeepestLast;
              else if (v == "DeepestFirst" || v == "1") s.contactOrder = gdc::ContactOrder::DeepestFirst;
-             else throw std::invalid_argument("setting contactOrder: '" + v + "' is not DeepestLast or DeepestFirst");
+             else if (v == "DeepestFirstWhenLoaded" || v == "2") s.contactOrder = gdc::ContactOrder::DeepestFirstWhenLoaded;
+             else throw std::invalid_argument("setting contactOrder: '" + v +
+                                              "' is not DeepestLast, DeepestFirst or DeepestFirstWhenLoaded");
          }},
+        {"loadedDepthFraction", [](gdc::Settings& s, const std::string& v) { s.loadedDepthFraction = parseDouble("loadedDepthFraction", v); }},
         {"reductionHysteresis", [](gdc::Settings& s, const std::string& v) { s.reductionHysteresis = parseDouble("reductionHysteresis", v); }},
         // New fields of gdc::Settings: one line each here.
         // Per-body-pair contact budget
@@ -570,20 +573,10 @@ struct JointMaker {
             const bool heavy = b1 && b2 && std::max(m1, m2) >= w.contender->massRatio * std::min(m1, m2);
             order = heavy ? RowOrder::DeepestFirst : RowOrder::DeepestLast;
         }
-        if (order == RowOrder::DeepDeepestFirst || order == RowOrder::RelativeDeepDeepestFirst) {
-            double deepest = 0, threshold = w.contender->massRatio;
+        if (order == RowOrder::DeepDeepestFirst) {
+            double deepest = 0;
             for (int i = 0; i < count; ++i) deepest = std::max(deepest, static_cast<double>(contacts[i].depth));
-            if (order == RowOrder::RelativeDeepDeepestFirst) {
-                double size = 0;
-                for (dGeomID g : {g1, g2}) {
-                    if (dGeomGetClass(g) == dPlaneClass) continue;
-                    dReal box[6];
-                    dGeomGetAABB(g, box);
-                    size = std::max(size, static_cast<double>(std::min({box[1] - box[0], box[3] - box[2], box[5] - box[4]})));
-                }
-                threshold *= size;
-            }
-            order = deepest > threshold ? RowOrder::DeepestFirst : RowOrder::DeepestLast;
+            order = deepest > w.contender->massRatio ? RowOrder::DeepestFirst : RowOrder::DeepestLast;
         }
         if (order == RowOrder::Reversed) std::reverse(created.begin(), created.end());
         if (order == RowOrder::DeepestFirst)  // created shallowest first: met deepest first
@@ -704,6 +697,7 @@ Contender parseContender(const std::string& full) {
     Contender c;
     c.name = full;
     std::string spec = full;
+    bool relativeDeep = false;
     const auto plus = full.find("+order=");
     if (plus != std::string::npos) {
         spec = full.substr(0, plus);
@@ -719,10 +713,22 @@ Contender parseContender(const std::string& full) {
         else if (order == "deepest-last") c.order = RowOrder::DeepestLast;
         else if (order == "heavy-deepest-first") c.order = RowOrder::HeavyDeepestFirst;
         else if (order == "deep-deepest-first") c.order = RowOrder::DeepDeepestFirst;
-        else if (order == "relative-deep-deepest-first") c.order = RowOrder::RelativeDeepDeepestFirst;
-        else throw std::invalid_argument("contender '" + full + "': order '" + order +
+        else if (order == "relative-deep-deepest-first") {
+            // The library's rule (gdc::ContactOrder::DeepestFirstWhenLoaded), the ratio its
+            // loadedDepthFraction: set on the gdc contender's settings below, rows left as written.
+            if (spec.rfind("gdc", 0) != 0)
+                throw std::invalid_argument("contender '" + full + "': relative-deep-deepest-first is gdcontact's "
+                                            "contactOrder=DeepestFirstWhenLoaded, for gdc contenders only");
+            relativeDeep = true;
+        } else throw std::invalid_argument("contender '" + full + "': order '" + order +
                                          "' is not as-is, reversed, deepest-first, deepest-last, heavy-deepest-first[:RATIO], "
                                          "deep-deepest-first[:METRES] or relative-deep-deepest-first[:FRACTION]");
+    }
+    if (relativeDeep) {  // before the settings variant, which may set either field itself
+        c.settings.contactOrder = gdc::ContactOrder::DeepestFirstWhenLoaded;
+        if (full.find("+order=relative-deep-deepest-first:") != std::string::npos)
+            c.settings.loadedDepthFraction = c.massRatio;
+        c.order = RowOrder::AsIs;
     }
     if (spec == "gdc") return c;
     if (spec == "ode-box") {

@@ -45,9 +45,9 @@ enum class RowOrder {
     /// Deepest met first where the pair's deepest point is deeper than Contender::massRatio (m),
     /// else deepest met last.
     DeepDeepestFirst,
-    /// The same, the threshold relative to the pair's size: Contender::massRatio times the larger
-    /// of the two geoms' least bounding-box extents (a scale-free stand-in for the load a pair carries).
-    RelativeDeepDeepestFirst,
+    // "+order=relative-deep-deepest-first[:FRACTION]" (the same, relative to the pair's size) is
+    // gdcontact's own gdc::ContactOrder::DeepestFirstWhenLoaded: parseContender sets it, and the
+    // FRACTION as loadedDepthFraction, in the gdc contender's settings; the rows stay AsIs.
 };
 
 struct Contender {

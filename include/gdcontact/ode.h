@@ -44,6 +44,8 @@ extern "C" {
  * one pair's contacts. */
 #define GDC_ORDER_DEEPEST_LAST 0  /* the deepest point last (default): the least drift */
 #define GDC_ORDER_DEEPEST_FIRST 1 /* the deepest point first: resting bodies sleep a little sooner */
+#define GDC_ORDER_DEEPEST_FIRST_WHEN_LOADED 2 /* deepest first where the pair is deeper than
+                                                * loadedDepthFraction of its size, else deepest last */
 
 /* The fields of gdc::Settings, in its order, with its units and the bounds gdcInstall checks
  * (settings.hpp says why each bound is there): rayCastTolerance (relative, 1e-15..1e-3),
@@ -73,6 +75,9 @@ typedef struct gdcSettings {
      * normals within it form one direction. gdcSpaceCollide applies them. */
     int maxBodyPairContacts;
     double bodyPairNormalTolerance;
+    /* GDC_ORDER_DEEPEST_FIRST_WHEN_LOADED's threshold (relative to the pair's size, 0..1; gdc::Settings
+     * places it after contactOrder, C adds fields at the end only) */
+    double loadedDepthFraction;
 } gdcSettings;
 
 /* Fills *settings with gdcontact's defaults (those of gdc::Settings). Does nothing for NULL. */

@@ -7,6 +7,7 @@ repository's scripts/ on PYTHONPATH (__main__.py lists the commands):
   bench.py         docs/benchmarks.md (scripts/bench)
   big.py           its "Big worlds" section (scripts/bench --big)
   budget.py        the contact budget tables of docs/algorithm.md (from solver-seeds runs)
+  order.py         a contact order against the default and ODE's options, paired by seed (from solver-seeds runs)
 
 and what they share: numbers as text (numbers), statistics — medians, the Wilson interval, the
 exact sign test (stats), Markdown tables (tables), reading the result files and splicing a section

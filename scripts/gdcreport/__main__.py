@@ -8,13 +8,14 @@ for a command's arguments.
   bench         docs/benchmarks.md and docs/images/bench_*.png from scripts/bench's results
   big           the "Big worlds" section of docs/benchmarks.md (scripts/bench --big)
   budget        the contact budget tables of docs/algorithm.md from solver-seeds runs (stdout)
+  order         a contact order against the default and ODE's options, paired by seed (stdout)
 """
 import importlib
 import sys
 
 # command → module of this package; each module's main(argv) reads its own arguments.
 COMMANDS = {"scenes": "scenes", "check": "check", "solver-seeds": "solver_seeds", "bench": "bench", "big": "big",
-            "budget": "budget"}
+            "budget": "budget", "order": "order"}
 
 
 def main(argv):

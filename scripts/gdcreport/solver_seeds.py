@@ -19,27 +19,13 @@ import shutil
 from gdcreport import data, plots, stats
 from gdcreport.numbers import fmt, number
 from gdcreport.plots import plt
+from gdcreport.steppers import STEPPER_LABEL, STEPPER_ORDER, stepper_label, steppers_in
 from gdcreport.tables import table_lines
 
-STEPPER_ORDER = ["quick10", "quick20", "quick50", "world"]
-STEPPER_LABEL = {"quick10": "QuickStep 10 it.", "quick20": "QuickStep 20 it.", "quick50": "QuickStep 50 it.",
-                 "world": "dWorldStep"}
 STEPPER_MARKER = {"quick10": "v", "quick20": "o", "quick50": "^", "world": "s"}
 CONTENDER_LABEL = {"gdc": "gdcontact", "ode-box": "ODE dBox", "ode-convex": "ODE dConvex"}
 BASE_COLOURS = {"gdc": "tab:blue", "ode-box": "tab:green", "ode-convex": "tab:red"}
 VARIANT_COLOURS = ["tab:purple", "tab:orange", "tab:brown", "tab:pink", "tab:olive", "tab:cyan", "tab:gray"]
-
-
-def stepper_label(name):
-    """A stepper's label; a solver variant (bench_solver_seeds' "quick20/cfm=1e-5/mu=0.8/maxc=4") keeps its suffix."""
-    base, _, variant = name.partition("/")
-    return STEPPER_LABEL.get(base, base) + (f" ({variant.replace('/', ', ')})" if variant else "")
-
-
-def steppers_in(rows):
-    """The steppers present, the plain ones in STEPPER_ORDER, then their variants by name."""
-    names = {r["stepper"] for r in rows}
-    return sorted(names, key=lambda n: (STEPPER_ORDER.index(n.partition("/")[0]) if n.partition("/")[0] in STEPPER_ORDER else 9, n))
 
 
 def contender_order(name):

@@ -34,7 +34,8 @@ void validate(const Settings& settings) {
     requireWithin("manifoldReuseDistance", settings.manifoldReuseDistance, 0.0, 1.0, " scene length units");
     const int order = static_cast<int>(settings.contactOrder);
     requireWithin("contactOrder", order, static_cast<int>(ContactOrder::DeepestLast),
-                  static_cast<int>(ContactOrder::DeepestFirst), " (a ContactOrder value)");
+                  static_cast<int>(ContactOrder::DeepestFirstWhenLoaded), " (a ContactOrder value)");
+    requireWithin("loadedDepthFraction", settings.loadedDepthFraction, 0.0, 1.0, " (relative to the pair's size)");
     requireWithin("reductionHysteresis", settings.reductionHysteresis, 0.0, 0.1, " (relative)");
     // Per-body-pair contact budget
     requireWithin("maxBodyPairContacts", settings.maxBodyPairContacts, 0, static_cast<int>(kMaxManifoldPoints),
@@ -50,7 +51,8 @@ bool operator==(const Settings& a, const Settings& b) {
            a.spanContactRegion == b.spanContactRegion && a.maxContacts == b.maxContacts &&
            a.bruteForceSupportLimit == b.bruteForceSupportLimit && a.coplanarTolerance == b.coplanarTolerance &&
            a.normalMethod == b.normalMethod && a.manifoldReuseDistance == b.manifoldReuseDistance &&
-           a.contactOrder == b.contactOrder && a.reductionHysteresis == b.reductionHysteresis &&
+           a.contactOrder == b.contactOrder && a.loadedDepthFraction == b.loadedDepthFraction &&
+           a.reductionHysteresis == b.reductionHysteresis &&
            // Per-body-pair contact budget
            a.maxBodyPairContacts == b.maxBodyPairContacts &&
            a.bodyPairNormalTolerance == b.bodyPairNormalTolerance;

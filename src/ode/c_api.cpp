@@ -76,6 +76,7 @@ gdc::Settings toSettings(const gdcSettings& in, const char* caller = "gdcInstall
     // Per-body-pair contact budget
     out.maxBodyPairContacts = in.maxBodyPairContacts;
     out.bodyPairNormalTolerance = in.bodyPairNormalTolerance;
+    out.loadedDepthFraction = in.loadedDepthFraction;
     return out;  // the ranges are checked by gdc::validate (in gdc::ode::install), which names the field
 }
 
@@ -101,6 +102,7 @@ void gdcDefaultSettings(gdcSettings* settings) noexcept {
     // Per-body-pair contact budget
     settings->maxBodyPairContacts = defaults.maxBodyPairContacts;
     settings->bodyPairNormalTolerance = defaults.bodyPairNormalTolerance;
+    settings->loadedDepthFraction = defaults.loadedDepthFraction;
 }
 
 int gdcInstall(const gdcSettings* settings) noexcept {

@@ -239,8 +239,9 @@ decltype(auto) collideLimited(const Settings& settings, int maxContacts, Collide
     });
     if (manifold.empty()) return 0;
     // The core's own answer is checked finite; a carried one (in cache.carried) is not.
-    return detail::writeContacts(manifold, planeFirst, polytope.radius(), maxContacts, settings.contactOrder, o1, o2, contact,
-                         skip, &manifold != &cache.carried);
+    return detail::writeContacts(manifold, planeFirst, polytope.radius(), maxContacts, settings.contactOrder,
+                                 detail::loadedDepthOf(settings, polytope.inradius(), 0.0), o1, o2, contact, skip,
+                                 &manifold != &cache.carried);
 }
 
 [[gnu::always_inline]] inline int collidePolytopes(const detail::ResolvedPair& pair, int maxContacts, dContactGeom* contact, int skip,
@@ -267,7 +268,9 @@ decltype(auto) collideLimited(const Settings& settings, int maxContacts, Collide
     if (manifold.empty()) return 0;
     // The core's own answer (box–box or general) is checked finite, as the half-space one.
     return detail::writeContacts(manifold, swapped, polytope1.radius() + polytope2.radius(), maxContacts,
-                         settings.contactOrder, o1, o2, contact, skip, &manifold != &cache.carried);
+                                 settings.contactOrder,
+                                 detail::loadedDepthOf(settings, polytope1.inradius(), polytope2.inradius()), o1, o2,
+                                 contact, skip, &manifold != &cache.carried);
 }
 
 [[gnu::always_inline]] inline int collideResolvedPair(const detail::ResolvedPair& pair, int maxContacts, dContactGeom* contact, int skip,

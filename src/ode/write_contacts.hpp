@@ -68,15 +68,25 @@ inline Ranked* rankByDepth(const ContactPoint* point, const ContactPoint* end, d
 
 }  // namespace write_contacts_detail
 
+/// ContactOrder::DeepestFirstWhenLoaded's threshold (settings.hpp): `loadedDepthFraction` of the
+/// pair's size, the larger of its shapes' least widths, each twice the inradius (a plane: none,
+/// pass 0 for it).
+inline double loadedDepthOf(const Settings& settings, double inradius1, double inradius2) {
+    return settings.loadedDepthFraction * 2.0 * std::max(inradius1, inradius2);
+}
+
 /// The core's contacts as ODE's: at most maxContacts, written in place at stride `skip`, in the
 /// order that makes dWorldQuickStep meet them as `order` says; the count written. `flip`: the
 /// core's A is o2 (its normal then already points from o2 into o1). `sizeOfPair`: the sum of the
-/// two polytopes' radii (the touching tolerance's scale).
+/// two polytopes' radii (the touching tolerance's scale). `loadedDepth`: DeepestFirstWhenLoaded's
+/// threshold (loadedDepthOf; read for that order only): where the deepest point written is deeper,
+/// the pair is written as DeepestFirst, else as DeepestLast.
 /// `checkedFinite`: the core's own answer (not one a pair cache carried), whose every position the
 /// core has checked finite (every answer it computes is written by emitManifold or the plane
 /// contacts, which throw where a contact overflows), so the finiteness test would pass.
 inline int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair, int maxContacts, ContactOrder order,
-                         dGeomID o1, dGeomID o2, dContactGeom* contact, int skip, bool checkedFinite) {
+                         double loadedDepth, dGeomID o1, dGeomID o2, dContactGeom* contact, int skip,
+                         bool checkedFinite) {
     using write_contacts_detail::Ranked;
     // The core's normal points from A towards B; ODE's from o2 into o1.
     Vec3 normal = flip ? manifold.normal : Vec3(-manifold.normal);
@@ -138,9 +148,11 @@ inline int writeContacts(const Manifold& manifold, bool flip, double sizeOfPair,
     using write_contacts_detail::WordPair;
     const DoublePair normalXY = {normal.x(), normal.y()}, normalZ0 = {normal.z(), 0.0};
     const WordPair geoms = {reinterpret_cast<std::uintptr_t>(o1), reinterpret_cast<std::uintptr_t>(o2)};
-    // Walk the ranked entries forwards (DeepestLast) or backwards (DeepestFirst): one step, no
-    // index arithmetic per contact.
-    const bool reverse = order == ContactOrder::DeepestFirst;
+    // Walk the ranked entries forwards (DeepestLast) or backwards (DeepestFirst; and
+    // DeepestFirstWhenLoaded where the deepest written, ranked[1], is deeper than loadedDepth):
+    // one step, no index arithmetic per contact.
+    const bool reverse = order == ContactOrder::DeepestFirst ||
+                         (order == ContactOrder::DeepestFirstWhenLoaded && written > 0 && ranked[1].depth > loadedDepth);
     const Ranked* entry = reverse ? &ranked[written] : &ranked[1];
     const std::ptrdiff_t step = reverse ? -1 : 1;
     char* outBytes = reinterpret_cast<char*>(contact);

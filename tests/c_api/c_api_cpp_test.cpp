@@ -28,11 +28,15 @@ TEST_CASE("gdcDefaultSettings gives gdc::Settings' defaults, field by field") {
     CHECK(c.manifoldReuseDistance == cpp.manifoldReuseDistance);
     CHECK(c.contactOrder == static_cast<int>(cpp.contactOrder));
     CHECK(c.reductionHysteresis == cpp.reductionHysteresis);
+    CHECK(c.maxBodyPairContacts == cpp.maxBodyPairContacts);
+    CHECK(c.bodyPairNormalTolerance == cpp.bodyPairNormalTolerance);
+    CHECK(c.loadedDepthFraction == cpp.loadedDepthFraction);
 }
 
 TEST_CASE("gdcSettings' contact order values are gdc::ContactOrder's") {
     CHECK(GDC_ORDER_DEEPEST_LAST == static_cast<int>(gdc::ContactOrder::DeepestLast));
     CHECK(GDC_ORDER_DEEPEST_FIRST == static_cast<int>(gdc::ContactOrder::DeepestFirst));
+    CHECK(GDC_ORDER_DEEPEST_FIRST_WHEN_LOADED == static_cast<int>(gdc::ContactOrder::DeepestFirstWhenLoaded));
 }
 
 TEST_CASE("The C functions are noexcept in C++ and have C linkage types") {

@@ -69,7 +69,11 @@ static void checkSettings(void) {
     bad = defaults; bad.bruteForceSupportLimit = -1;    checkRejected(bad, "bruteForceSupportLimit");
     bad = defaults; bad.coplanarTolerance = -1.0;       checkRejected(bad, "coplanarTolerance");
     bad = defaults; bad.normalMethod = 2;               checkRejected(bad, "normalMethod");
-    bad = defaults; bad.contactOrder = 2;               checkRejected(bad, "contactOrder");
+    bad = defaults; bad.contactOrder = 3;               checkRejected(bad, "contactOrder");
+    bad = defaults; bad.contactOrder = GDC_ORDER_DEEPEST_FIRST_WHEN_LOADED;
+    CHECK(gdcInstall(&bad) == GDC_OK);
+    bad = defaults; bad.loadedDepthFraction = -1e-3;    checkRejected(bad, "loadedDepthFraction");
+    bad = defaults; bad.loadedDepthFraction = NAN;      checkRejected(bad, "loadedDepthFraction");
     bad = defaults; bad.contactOrder = -1;              checkRejected(bad, "contactOrder");
     bad = defaults; bad.reductionHysteresis = 0.2;      checkRejected(bad, "reductionHysteresis");
     bad = defaults; bad.reductionHysteresis = NAN;      checkRejected(bad, "reductionHysteresis");

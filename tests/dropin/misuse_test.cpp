@@ -98,7 +98,8 @@ TEST_CASE("every Settings field is bounded on both sides, and the message names 
         {"coplanarTolerance", [](gdc::Settings& s, double v) { s.coplanarTolerance = v; }, 0, 0.1, -1e-9, 0.2},
         {"normalMethod", [](gdc::Settings& s, double v) { s.normalMethod = static_cast<gdc::NormalMethod>(int(v)); }, 0, 1, -1, 2},
         {"manifoldReuseDistance", [](gdc::Settings& s, double v) { s.manifoldReuseDistance = v; }, 0, 1, -1e-9, 2.0},
-        {"contactOrder", [](gdc::Settings& s, double v) { s.contactOrder = static_cast<gdc::ContactOrder>(int(v)); }, 0, 1, -1, 2},
+        {"contactOrder", [](gdc::Settings& s, double v) { s.contactOrder = static_cast<gdc::ContactOrder>(int(v)); }, 0, 2, -1, 3},
+        {"loadedDepthFraction", [](gdc::Settings& s, double v) { s.loadedDepthFraction = v; }, 0, 1, -1e-9, 1.5},
         {"reductionHysteresis", [](gdc::Settings& s, double v) { s.reductionHysteresis = v; }, 0, 0.1, -1e-9, 0.2},
         // Per-body-pair contact budget
         {"maxBodyPairContacts", [](gdc::Settings& s, double v) { s.maxBodyPairContacts = int(v); }, 0, 16, -1, 17},

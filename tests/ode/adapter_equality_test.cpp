@@ -49,6 +49,7 @@ std::vector<dContactGeom> expectedContacts(dGeomID o1, dGeomID o2, int limit, co
     Manifold manifold;
     bool flip;  // the core's A is o2
     double size;
+    double leastWidth;  // the larger of the shapes' least widths (a plane has none)
     if (planeFirst || planeSecond) {
         dGeomID body = planeFirst ? o2 : o1, plane = planeFirst ? o1 : o2;
         dVector4 p;
@@ -58,6 +59,7 @@ std::vector<dContactGeom> expectedContacts(dGeomID o1, dGeomID o2, int limit, co
                                 HalfSpace{Vec3(p[0], p[1], p[2]).normalized(), p[3]}, settings);
         flip = planeFirst;
         size = polytope->radius();
+        leastWidth = 2 * polytope->inradius();
     } else {
         const Pose pose1 = gdc::ode::poseOf(o1), pose2 = gdc::ode::poseOf(o2);
         const Vec3 &p = pose2.position, &q = pose1.position;
@@ -70,6 +72,7 @@ std::vector<dContactGeom> expectedContacts(dGeomID o1, dGeomID o2, int limit, co
         const std::shared_ptr<const Polytope> b = gdc::ode::polytopeOf(flip ? o1 : o2);
         manifold = gdc::collide(*a, flip ? pose2 : pose1, *b, flip ? pose1 : pose2, settings);
         size = a->radius() + b->radius();
+        leastWidth = 2 * std::max(a->inradius(), b->inradius());
     }
     std::vector<dContactGeom> out;
     if (manifold.empty()) return out;
@@ -86,7 +89,10 @@ std::vector<dContactGeom> expectedContacts(dGeomID o1, dGeomID o2, int limit, co
     if (!kept.empty() && manifold.points[kept.front()].depth > 0)
         while (!(manifold.points[kept.back()].depth > 0)) kept.pop_back();
     kept.resize(std::min<std::size_t>(kept.size(), static_cast<std::size_t>(maxContacts)));
-    if (installed.contactOrder == ContactOrder::DeepestFirst) std::reverse(kept.begin(), kept.end());
+    const bool loaded = !kept.empty() && manifold.points[kept.front()].depth > installed.loadedDepthFraction * leastWidth;
+    if (installed.contactOrder == ContactOrder::DeepestFirst ||
+        (installed.contactOrder == ContactOrder::DeepestFirstWhenLoaded && loaded))
+        std::reverse(kept.begin(), kept.end());
     for (int i : kept) {
         dContactGeom c{};
         for (int k = 0; k < 3; ++k) c.pos[k] = manifold.points[i].position[k], c.normal[k] = normal[k];
@@ -317,6 +323,13 @@ TEST_CASE("adapter: contacts equal the core's answer with DeepestFirst and a mar
     checkEveryPairType(settings);
 }
 
+TEST_CASE("adapter: contacts equal the core's answer with DeepestFirstWhenLoaded", "[ode][equality]") {
+    Settings settings;
+    settings.contactOrder = ContactOrder::DeepestFirstWhenLoaded;
+    settings.loadedDepthFraction = 0.01;  // the test's poses: some pairs deeper, some shallower
+    checkEveryPairType(settings);
+}
+
 TEST_CASE("adapter: a hull on a plane follows each install()'s angular tolerance on the same thread", "[ode][equality]") {
     // The adapter keeps the hull–plane query's AngularTolerance per thread (issue 23); switching
     // the installed tolerance back and forth must give gdc::collide's answer for the new one
@@ -362,7 +375,8 @@ namespace {
 // manifold of 10^5 random poses of each pair type is written into arrays filled alike with random bytes: the slots
 // past the count and the bytes between contacts at a dContact stride must stay as they were. Each
 // call's other inputs are drawn too: either order of the pair, the contact limit, the stride
-// (dContactGeom or dContact), DeepestLast or DeepestFirst, a core answer or a carried one (then
+// (dContactGeom or dContact), DeepestLast, DeepestFirst or DeepestFirstWhenLoaded (reversed where
+// the deepest kept point is deeper than the threshold), a core answer or a carried one (then
 // some positions not finite); the points shuffled in half the calls, and some depths made equal,
 // negative, −0 or 0.
 
@@ -385,7 +399,17 @@ void compareWrites(Manifold manifold, double sizeOfPair, std::mt19937_64& random
     std::uniform_int_distribution<int> limitOf(1, kMaxManifoldPoints), coin(0, 1), kindOf(0, 9);
     const bool flip = coin(random) == 1;
     const int maxContacts = limitOf(random);
-    const ContactOrder order = coin(random) ? ContactOrder::DeepestFirst : ContactOrder::DeepestLast;
+    std::uniform_int_distribution<int> orderOf(0, 2);
+    const ContactOrder order = static_cast<ContactOrder>(orderOf(random));
+    // DeepestFirstWhenLoaded's threshold: at one of the manifold's depths (a tie: not loaded), or
+    // between them.
+    std::uniform_real_distribution<double> fraction(0.0, 1.0);
+    const double deepestInManifold =
+        manifold.pointCount ? std::max_element(manifold.points.begin(), manifold.points.begin() + manifold.pointCount,
+                                               [](const ContactPoint& x, const ContactPoint& y) { return x.depth < y.depth; })
+                                  ->depth
+                            : 0.0;
+    const double loadedDepth = coin(random) ? deepestInManifold : 1.5 * fraction(random) * deepestInManifold;
     const int skip = coin(random) ? static_cast<int>(sizeof(dContact)) : static_cast<int>(sizeof(dContactGeom));
     const bool checkedFinite = kindOf(random) < 7;
     if (coin(random)) std::shuffle(manifold.points.begin(), manifold.points.begin() + manifold.pointCount, random);
@@ -416,7 +440,7 @@ void compareWrites(Manifold manifold, double sizeOfPair, std::mt19937_64& random
     std::vector<unsigned char> before(kMaxManifoldPoints * sizeof(dContact));
     for (unsigned char& byte : before) byte = static_cast<unsigned char>(random());
     std::vector<unsigned char> got = before, want = before;
-    const int gotCount = gdc::ode::detail::writeContacts(manifold, flip, sizeOfPair, maxContacts, order, o1, o2,
+    const int gotCount = gdc::ode::detail::writeContacts(manifold, flip, sizeOfPair, maxContacts, order, loadedDepth, o1, o2,
                                                          reinterpret_cast<dContactGeom*>(got.data()), skip, checkedFinite);
     // The convention, plainly.
     Vec3 normal = flip ? manifold.normal : Vec3(-manifold.normal);
@@ -432,7 +456,9 @@ void compareWrites(Manifold manifold, double sizeOfPair, std::mt19937_64& random
         if (!kept.empty() && kept.front()->depth > 0)
             while (!(kept.back()->depth > 0)) kept.pop_back();
         if (static_cast<int>(kept.size()) > maxContacts) kept.resize(static_cast<std::size_t>(maxContacts));
-        if (order == ContactOrder::DeepestFirst) std::reverse(kept.begin(), kept.end());
+        const bool loaded = !kept.empty() && kept.front()->depth > loadedDepth;
+        if (order == ContactOrder::DeepestFirst || (order == ContactOrder::DeepestFirstWhenLoaded && loaded))
+            std::reverse(kept.begin(), kept.end());
         wantCount = static_cast<int>(kept.size());
         for (int i = 0; i < wantCount; ++i) {
             // Its bytes as they were first: a single-precision dContactGeom has 4 bytes of padding

@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -18,11 +19,14 @@ using namespace gdc::ode::test;
 
 namespace {
 
-// A box tilted on a plane (four corners at four depths): the depths in the order of the body's
-// joint list, after one joint per contact was created and attached in the array's order.
-std::vector<double> depthsInJointListOrder(ContactOrder order) {
-    Settings settings;
-    settings.contactOrder = order;
+// A box of sides 1 × 0.8 × 0.6 (a body), turned by the Euler angles `tilt` so that its four bottom
+// corners lie at four depths (by default within 1.02 mm of each other: all four overlap from
+// 1.02 mm on), its lowest corner `deepest` below z = 0, against: a plane z = 0,
+// or a static box of sides 2 × 2 × 0.4 whose top face is z = 0. The depths in the order of the
+// body's joint list (the order dWorldQuickStep meets them), after a joint per contact was created
+// and attached in the array's order.
+std::vector<double> depthsMetOn(const Settings& settings, bool onBox, double deepest,
+                                std::array<double, 3> tilt = {0.0004, 0.0007, 0.3}) {
     OdeSession session(true, settings);
     dWorldID world = dWorldCreate();
     dJointGroupID group = dJointGroupCreate(0);
@@ -30,12 +34,18 @@ std::vector<double> depthsInJointListOrder(ContactOrder order) {
     dGeomID box = dCreateBox(nullptr, 1, 0.8, 0.6);
     dGeomSetBody(box, body);
     dMatrix3 r;
-    dRFromEulerAngles(r, 0.01, 0.02, 0.3);
+    dRFromEulerAngles(r, tilt[0], tilt[1], tilt[2]);
     dBodySetRotation(body, r);
-    dBodySetPosition(body, 0, 0, 0.28);
-    dGeomID plane = dCreatePlane(nullptr, 0, 0, 1, 0);
+    double lowest = 0;  // the lowest corner's height above the centre: r's third row · the corner
+    for (int corner = 0; corner < 8; ++corner) {
+        const double local[3] = {corner & 1 ? 0.5 : -0.5, corner & 2 ? 0.4 : -0.4, corner & 4 ? 0.3 : -0.3};
+        lowest = std::min(lowest, r[8] * local[0] + r[9] * local[1] + r[10] * local[2]);
+    }
+    dBodySetPosition(body, 0.1, -0.05, -deepest - lowest);
+    dGeomID other = onBox ? dCreateBox(nullptr, 2, 2, 0.4) : dCreatePlane(nullptr, 0, 0, 1, 0);
+    if (onBox) dGeomSetPosition(other, 0, 0, -0.2);
     dContact contacts[8] = {};
-    const int count = dCollide(box, plane, 8, &contacts[0].geom, sizeof(dContact));
+    const int count = dCollide(box, other, 8, &contacts[0].geom, sizeof(dContact));
     std::vector<dJointID> joints;
     for (int i = 0; i < count; ++i) {
         joints.push_back(dJointCreateContact(world, group, &contacts[i]));
@@ -44,12 +54,11 @@ std::vector<double> depthsInJointListOrder(ContactOrder order) {
     std::vector<double> depths;
     REQUIRE(dBodyGetNumJoints(body) == count);
     for (int k = 0; k < count; ++k) {
-        dJointID joint = dBodyGetJoint(body, k);
         // The head of the list is the joint created last.
-        CHECK(joint == joints[static_cast<std::size_t>(count - 1 - k)]);
+        CHECK(dBodyGetJoint(body, k) == joints[static_cast<std::size_t>(count - 1 - k)]);
         depths.push_back(contacts[count - 1 - k].geom.depth);
     }
-    dGeomDestroy(plane);
+    dGeomDestroy(other);
     dGeomDestroy(box);
     dJointGroupDestroy(group);
     dWorldDestroy(world);
@@ -58,7 +67,50 @@ std::vector<double> depthsInJointListOrder(ContactOrder order) {
 
 }  // namespace
 
+// DeepestFirstWhenLoaded, the rule spelled out: a pair whose deepest point is deeper than
+// loadedDepthFraction times the larger of its two shapes' least extents (a plane has none) is met
+// deepest first, any other deepest last. Here the larger least extent is the body's 0.6 (the
+// static box's is 0.4), so at the default fraction 0.003 the line is 1.8 mm: 1.5 mm is below it
+// (but above the 1.2 mm the static box's extent, or the smaller one, would give), 2.5 mm above.
+TEST_CASE("DeepestFirstWhenLoaded meets a loaded pair deepest first and a lightly loaded one deepest last",
+          "[ode][order]") {
+    Settings settings;
+    settings.contactOrder = ContactOrder::DeepestFirstWhenLoaded;
+    REQUIRE(settings.loadedDepthFraction == 0.003);
+    const double line = settings.loadedDepthFraction * std::max(std::min({1.0, 0.8, 0.6}), std::min({2.0, 2.0, 0.4}));
+    REQUIRE(line == Approx(0.0018));
+    for (const bool onBox : {true, false}) {
+        for (const double deepest : {0.0015, 0.0025}) {
+            INFO((onBox ? "on a box" : "on a plane") << ", deepest " << deepest);
+            const std::vector<double> met = depthsMetOn(settings, onBox, deepest);
+            REQUIRE(met.size() == 4);
+            const double deepestMet = *std::max_element(met.begin(), met.end());
+            CHECK(deepestMet == Approx(deepest).margin(1e-6));
+            CHECK(met.front() != met.back());
+            if (deepestMet > line) CHECK(std::is_sorted(met.rbegin(), met.rend()));  // deepest first
+            else CHECK(std::is_sorted(met.begin(), met.end()));                      // deepest last
+            CHECK((deepest > line ? met.front() : met.back()) == deepestMet);
+        }
+    }
+    // The fraction moves the line: at 0.001 (0.6 mm) both pairs are loaded, at 0.01 (6 mm) neither.
+    for (const double fraction : {0.001, 0.01}) {
+        settings.loadedDepthFraction = fraction;
+        for (const double deepest : {0.0015, 0.0025}) {
+            INFO("fraction " << fraction << ", deepest " << deepest);
+            const std::vector<double> met = depthsMetOn(settings, true, deepest);
+            REQUIRE(met.size() == 4);
+            CHECK((fraction < 0.003 ? met.front() : met.back()) == *std::max_element(met.begin(), met.end()));
+        }
+    }
+}
+
 TEST_CASE("The solver meets a pair's contacts by depth, as Settings::contactOrder says", "[ode][order]") {
+    // Tilted further (bottom corners up to 2.8 cm apart), the lowest 3 cm deep: four depths.
+    const auto depthsInJointListOrder = [](ContactOrder order) {
+        Settings settings;
+        settings.contactOrder = order;
+        return depthsMetOn(settings, false, 0.03, {0.01, 0.02, 0.3});
+    };
     const std::vector<double> first = depthsInJointListOrder(ContactOrder::DeepestFirst);
     REQUIRE(first.size() == 4);
     CHECK(std::is_sorted(first.rbegin(), first.rend()));  // deepest first

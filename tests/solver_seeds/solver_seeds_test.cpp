@@ -99,7 +99,8 @@ TEST_CASE("every gdc::Settings field is set by its name, and a contender's varia
     ss::setSetting(settings, "coplanarTolerance", "1e-5");
     ss::setSetting(settings, "normalMethod", "SeparatingAxis");
     ss::setSetting(settings, "manifoldReuseDistance", "0.002");
-    ss::setSetting(settings, "contactOrder", "DeepestLast");
+    ss::setSetting(settings, "contactOrder", "DeepestFirstWhenLoaded");
+    ss::setSetting(settings, "loadedDepthFraction", "0.005");
     ss::setSetting(settings, "reductionHysteresis", "0.02");
     CHECK(settings.rayCastTolerance == 1e-8);
     CHECK(settings.maxRayCastIterations == 12);
@@ -111,7 +112,8 @@ TEST_CASE("every gdc::Settings field is set by its name, and a contender's varia
     CHECK(settings.coplanarTolerance == 1e-5);
     CHECK(settings.normalMethod == gdc::NormalMethod::SeparatingAxis);
     CHECK(settings.manifoldReuseDistance == 0.002);
-    CHECK(settings.contactOrder == gdc::ContactOrder::DeepestLast);
+    CHECK(settings.contactOrder == gdc::ContactOrder::DeepestFirstWhenLoaded);
+    CHECK(settings.loadedDepthFraction == 0.005);
     CHECK(settings.reductionHysteresis == 0.02);
     // Every name the table knows refuses a value that does not parse (a newer field included).
     for (const std::string& name : ss::settingNames()) {
@@ -296,4 +298,13 @@ TEST_CASE("issue 35: the gross criterion can fail, and the heap is let go one by
     CHECK(variant.contactsAsked == 4);
     CHECK_THROWS_AS(ss::parseStepper("quick20/maxc=17"), std::invalid_argument);
     CHECK_THROWS_AS(ss::parseContender("gdc+order=sideways"), std::invalid_argument);
+    // The relative-depth rule is the library's DeepestFirstWhenLoaded (no copy of it in the bench):
+    // the rows are left as gdcontact writes them.
+    const ss::Contender loaded = ss::parseContender("gdc+order=relative-deep-deepest-first:0.01");
+    CHECK(loaded.order == ss::RowOrder::AsIs);
+    CHECK(loaded.settings.contactOrder == gdc::ContactOrder::DeepestFirstWhenLoaded);
+    CHECK(loaded.settings.loadedDepthFraction == 0.01);
+    CHECK(ss::parseContender("gdc+order=relative-deep-deepest-first").settings.loadedDepthFraction ==
+          gdc::Settings{}.loadedDepthFraction);
+    CHECK_THROWS_AS(ss::parseContender("ode-box+order=relative-deep-deepest-first:0.003"), std::invalid_argument);
 }
