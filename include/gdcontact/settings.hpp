@@ -30,8 +30,9 @@ enum class ContactOrder {
     /// DeepestFirst where the pair is loaded — its deepest point deeper than
     /// Settings::loadedDepthFraction times the pair's size (the larger of the two shapes' least
     /// widths, each twice its Polytope::inradius(): a box's least extent; a plane has none) — and
-    /// DeepestLast elsewhere: lightly loaded stacks keep DeepestLast's rows exactly, pairs
-    /// carrying a load the solver's cut-off sweep cannot settle (a heavy body on a column of light
+    /// DeepestLast elsewhere: stacks of equal bodies resting at their usual depth keep
+    /// DeepestLast's rows (thin or small bodies may pass the threshold unloaded), pairs carrying a
+    /// load the solver's cut-off sweep cannot settle (a heavy body on a column of light
     /// ones) get the order that holds them: under dWorldQuickStep the loaded columns collapse far
     /// less often than with DeepestLast or ODE's dBox colliders. Not the default: thin plates
     /// twist and a 100 kg cube on a 1 kg one drifts a little more than the robustness tests allow
