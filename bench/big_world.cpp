@@ -17,7 +17,9 @@
 // measured steps. Every measured step times, on the same world state, one after the other:
 //   broad_phase      dSpaceCollide with an empty near callback (ODE's hash space alone);
 //   ode              dSpaceCollide + near callback + dCollide: ODE's dBoxBox and dCollideBoxPlane;
-//   loop / loop_cache            dSpaceCollide + near callback + gdc::ode::collide;
+//   loop / loop_cache            dSpaceCollide + near callback + gdc::ode::collide, the pairs' contacts
+//                                collected in gdc::ode::BodyPairContacts and delivered after the
+//                                broad phase (docs/ode.md: what spaceCollide equals bit for bit);
 //   space_1t / space_1t_cache    gdc::ode::spaceCollide, setThreadCount(1);
 //   space_mt / space_mt_cache    gdc::ode::spaceCollide, setThreadCount(0): every hardware thread;
 //   profile_1t, profile_mt       spaceCollide (cache off) with its phase timing on
@@ -27,18 +29,25 @@
 // step's answers, and a second cache-on pass over the same unchanged state would find every answer
 // repeated. Then the step's contact joints are made and dWorldQuickStep (20 iterations) steps the
 // world (timed: "solver"). The gdcontact contenders must give the same contacts bit for bit (the
-// program stops with an error if not). Wall-clock time (threads are the point); per contender the
-// median, quartiles, minimum and maximum over the measured steps.
+// program stops with an error if not). spaceCollide applies the per-body-pair budget
+// (Settings::maxBodyPairContacts) wherever two bodies touch through several geom pairs — here a box
+// against the static world through the ground and a wall of the bin —, so the loop it is held to
+// is the near callback with BodyPairContacts, not plain dCollide's contacts (those differ where the
+// budget drops or merges a point: a box standing against a wall, 2 of its wall pair's 3 points).
+// Wall-clock time (threads are the point); per contender the median, quartiles, minimum and
+// maximum over the measured steps.
 //
 // Usage: bench_big_world [--bodies 100,300,1000,3000,10000] [--settle N] [--steps N]
 //                        [--resting] [--no-pile] [--space hash|sap] [--only CONTENDER [--repeat K]]
-//                        [--out FILE.csv] [--profile-out FILE.csv]
+//                        [--seed N] [--out FILE.csv] [--profile-out FILE.csv]
 //   --only C [--repeat K]: that contender alone, K times a step (default 1), for perf record or
 //   callgrind on one configuration (the world still steps once a step).
 //   --steps N: measured steps at 1000 bodies; a count c gets N·1000/c (at least 15, at most 4 N), so
 //   that every size takes about as long; --settle N: settling steps up to 1000 bodies, N·√(1000/c)
 //   above (at least 30). Without --out, the table goes to stdout.
 //   --space sap: ODE's sweep-and-prune space instead of its hash space for every world.
+//   --seed N: ODE's random generator (QuickStep's constraint shuffling) is set to N (default 1) as
+//   each world is built, so a world's states do not depend on which worlds ran before it.
 #include "fixtures.hpp"
 #include "ode_shapes.hpp"
 #include "ode/space_collide_profile.hpp"
@@ -79,6 +88,7 @@ constexpr double kSleepAngularSpeed = 0.3;  // rad/s
 // sweep-and-prune space. ODE's hash space allocates and clears an n × n bit matrix on every
 // dSpaceCollide (n²/8 bytes: 12.5 MB at 10 000 geoms), so its cost grows as n².
 bool sweepAndPrune = false;  // --space sap
+unsigned long randomSeed = 1;  // --seed: dRandSetSeed as each world is built
 
 struct World {
     dWorldID world = dWorldCreate();
@@ -87,6 +97,9 @@ struct World {
     std::vector<dBodyID> bodies;
     std::vector<dContactGeom> contacts;  // the consumer: every contact of a step, with its pair
     std::vector<std::array<dGeomID, 2>> pairs;
+    // The loop contenders' contacts, reduced per pair of bodies as spaceCollide reduces them (the
+    // installed settings: this program installs none, so the defaults).
+    gdc::ode::BodyPairContacts collected;
 
     World() {
         dWorldSetGravity(world, 0, 0, -9.81);
@@ -191,17 +204,25 @@ void buildPyramid(World& w) {  // bench/scenes.cpp's pyramid
 
 void emptyCallback(void*, dGeomID, dGeomID) {}
 
-template <bool Gdcontact>
-void loopCallback(void* data, dGeomID o1, dGeomID o2) {
+void handler(void* data, dGeomID o1, dGeomID o2, dContactGeom* contacts, int count) {
+    static_cast<World*>(data)->consume(o1, o2, contacts, count);
+}
+
+// ODE's colliders: dCollide's contacts as they are (ODE has no per-body-pair budget).
+void odeCallback(void* data, dGeomID o1, dGeomID o2) {
     World& w = *static_cast<World*>(data);
     std::array<dContactGeom, kMaxContactsPerPair> geoms;
-    const int n = Gdcontact ? gdc::ode::collide(o1, o2, kMaxContactsPerPair, geoms.data(), sizeof(dContactGeom))
-                            : dCollide(o1, o2, kMaxContactsPerPair, geoms.data(), sizeof(dContactGeom));
+    const int n = dCollide(o1, o2, kMaxContactsPerPair, geoms.data(), sizeof(dContactGeom));
     if (n > 0) w.consume(o1, o2, geoms.data(), n);
 }
 
-void handler(void* data, dGeomID o1, dGeomID o2, dContactGeom* contacts, int count) {
-    static_cast<World*>(data)->consume(o1, o2, contacts, count);
+// gdcontact's: collected, then delivered reduced per pair of bodies (runContender) — what
+// spaceCollide hands over. Pairs without contacts are left out: they add nothing to a body pair.
+void loopCallback(void* data, dGeomID o1, dGeomID o2) {
+    World& w = *static_cast<World*>(data);
+    std::array<dContactGeom, kMaxContactsPerPair> geoms;
+    const int n = gdc::ode::collide(o1, o2, kMaxContactsPerPair, geoms.data(), sizeof(dContactGeom));
+    if (n > 0) w.collected.add(o1, o2, geoms.data(), n);
 }
 
 enum class Kind { BroadPhase, Ode, Loop, Space1, SpaceAll };
@@ -239,8 +260,11 @@ void runContender(World& w, const Contender& c) {
     gdc::ode::detail::setSpaceCollideProfiling(c.profiled);
     switch (c.kind) {
         case Kind::BroadPhase: dSpaceCollide(w.space, &w, &emptyCallback); break;
-        case Kind::Ode: dSpaceCollide(w.space, &w, &loopCallback<false>); break;
-        case Kind::Loop: dSpaceCollide(w.space, &w, &loopCallback<true>); break;
+        case Kind::Ode: dSpaceCollide(w.space, &w, &odeCallback); break;
+        case Kind::Loop:
+            dSpaceCollide(w.space, &w, &loopCallback);
+            w.collected.deliver(&w, &handler);
+            break;
         case Kind::Space1:
         case Kind::SpaceAll:
             gdc::ode::setThreadCount(c.kind == Kind::Space1 ? 1 : 0);
@@ -338,6 +362,7 @@ int repeat = 1;             // --repeat, with --only
 
 Measured measure(const std::string& name, const std::function<void(World&)>& build, bool autoDisable, int settle,
                  int steps) {
+    dRandSetSeed(randomSeed);
     World w;
     build(w);
     Measured m;
@@ -477,15 +502,15 @@ int main(int argc, char** argv) {
         }
         else if (arg == "--repeat") repeat = std::max(1, std::stoi(value()));
         else if (arg == "--profile-out") profileOut = value();
+        else if (arg == "--seed") randomSeed = std::stoul(value());
         else {
             std::cerr << "usage: bench_big_world [--bodies 100,300,...] [--settle N] [--steps N] [--resting] "
-                         "[--no-pile] [--space hash|sap] [--only CONTENDER [--repeat K]] [--out FILE.csv] "
+                         "[--no-pile] [--space hash|sap] [--only CONTENDER [--repeat K]] [--seed N] [--out FILE.csv] "
                          "[--profile-out FILE.csv]\n";
             return 2;
         }
     }
     OdeSession ode;  // no install(): dCollide is ODE's native collider
-    dRandSetSeed(1);
     std::vector<Measured> results;
     auto run = [&](const std::string& name, const std::function<void(World&)>& build, bool autoDisable, int n,
                    int settleSteps) {
