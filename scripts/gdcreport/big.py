@@ -18,7 +18,7 @@ from gdcreport.tables import table_lines
 CONTENDERS = [
     ("broad_phase", "ODE's broad phase alone"),
     ("ode", "ODE's colliders (dBoxBox, box–plane): dSpaceCollide + near callback"),
-    ("loop", "gdcontact: dSpaceCollide + near callback + gdc::ode::collide"),
+    ("loop", "gdcontact: dSpaceCollide + near callback + gdc::ode::collide + BodyPairContacts"),
     ("space_1t", "gdcontact: spaceCollide, 1 thread"),
     ("space_mt", "gdcontact: spaceCollide, every hardware thread"),
 ]
