@@ -5,6 +5,8 @@
 // the same (no state of the caches — pair cache, box polytopes, thread caches — carried over).
 #include <gdcontact/ode.hpp>
 
+#include "sanitizer_scale.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <cstring>
@@ -235,7 +237,9 @@ TEST_CASE("after a world of asleep bodies is destroyed, a new world at reused ad
     std::size_t reused = 0;
     for (const void* g : second.geoms()) reused += earlier.count(g);
     INFO("geoms of the new world at an address of the destroyed one: " << reused);
-    REQUIRE(reused >= 5);
+    // The allocator hands the freed geoms' memory out again; a sanitizer's allocator quarantines
+    // freed memory (no reuse), and there the rest of the test checks a fresh world.
+    if (!gdc::testing::kUnderSanitizer) REQUIRE(reused >= 5);
 
     int budgetApplied = 0;
     for (int step = 0; step < 150; ++step) {
