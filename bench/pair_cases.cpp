@@ -371,6 +371,8 @@ std::vector<PairCaseSet> pairCaseSets() {
             sets.push_back({"convex_plane_flat", c.name, 1,
                             [c](Filter f) { return cubePlaneContenders(c, true, true, f); }});
         }
+    // The curved pairs (issue 33, curved_cases.cpp).
+    for (PairCaseSet& set : curvedCaseSets()) sets.push_back(std::move(set));
     return sets;
 }
 

@@ -13,6 +13,7 @@
 #include "fixtures.hpp"
 
 #include <functional>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -44,8 +45,17 @@ struct PairCaseSet {
 };
 
 /// Every case, in the order the drivers run them: cube pairs, cube on a plane, the hull size sweep
-/// (hull–hull and hull on a plane), then the single-pose "_flat" families.
+/// (hull–hull and hull on a plane), the single-pose "_flat" families, then the curved pairs.
 std::vector<PairCaseSet> pairCaseSets();
+
+/// The curved pairs of issue 33 (curved_cases.cpp): cylinder_box, cylinder_plane, cylinder_convex,
+/// capsule_box, capsule_convex, sphere_convex, cylinder_cylinder, capsule_cylinder, each resting,
+/// with the contenders "ode" (ODE's own collider), "gdcontact_ode" and "gdcontact".
+std::vector<PairCaseSet> curvedCaseSets();
+
+/// For each curved case, the contacts (count, normal tilt, depths) that ODE's own collider, the
+/// adapter and the core return for the cycled pose `poseIndex` (bench_curved_contacts).
+void printCurvedContacts(std::ostream& out, int poseIndex);
 
 /// `count` poses jittered about `canonical` (rotation about the body's centre), from `seed`.
 std::vector<Pose> jitteredPoses(const Pose& canonical, int count, std::uint64_t seed);

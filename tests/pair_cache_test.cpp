@@ -200,11 +200,12 @@ TEST_CASE("pair cache: a cache passed with other shapes, settings or half-space 
                 case 11: s.reductionHysteresis *= 2; break;
                 case 12: s.maxBodyPairContacts = 0; break;
                 case 13: s.loadedDepthFraction *= 2; break;
+                case 14: s.rimPointsPerTurn += 1; break;
                 default: s.bodyPairNormalTolerance *= 2; break;
             }
             return s;
         };
-        for (int field = 0; field <= 14; ++field) {
+        for (int field = 0; field <= 15; ++field) {
             INFO("field " << field);
             CHECK(changed(field) != Settings{});
             collide(box, poseA, *other, poseB, changed(field), cache);

@@ -5,15 +5,9 @@
 #include <gdcontact/pair_cache.hpp>
 #include <gdcontact/polytope.hpp>
 #include <gdcontact/settings.hpp>
+#include <gdcontact/shapes.hpp>
 
 namespace gdc {
-
-/// The solid half-space {x : normal·x ≤ offset} (an ODE plane). `normal` must be non-zero; it is
-/// normalised by collide().
-struct HalfSpace {
-    Vec3 normal = Vec3::UnitZ();
-    double offset = 0.0;
-};
 
 /// Contact manifold between two convex polytopes by the paper's three stages: growth-distance
 /// normal, one Gauss-map feature per body, feature intersection in the contact plane.
@@ -26,6 +20,14 @@ GDCONTACT_API Manifold collide(const Polytope& a, const Pose& poseA, const Polyt
 /// −halfSpace.normal (from A into B's solid, as above).
 GDCONTACT_API Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b,
                  const Settings& settings = {});
+
+/// Contact manifold between any two shapes (shapes.hpp: polytopes, spheres, capsules, cylinders, a
+/// half-space), by the same three stages: the curved kinds bring their exact Gauss-map features (a
+/// cylinder's cap is a disc, its side a segment; a capsule's side a segment with its radius; a
+/// sphere a point with its radius), intersected exactly in the contact plane. Throws InvalidInput for
+/// non-finite poses, sizes a shape refuses (shapes.hpp) and two half-spaces.
+GDCONTACT_API Manifold collide(const ShapeRef& a, const Pose& poseA, const ShapeRef& b, const Pose& poseB,
+                               const Settings& settings = {});
 
 /// The same queries with the pair's cache (pair_cache.hpp): when neither pose, shape nor setting
 /// changed since the query that filled it, its answer is returned without a query — the same

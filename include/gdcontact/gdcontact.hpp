@@ -5,5 +5,6 @@
 #include <gdcontact/manifold.hpp>
 #include <gdcontact/polytope.hpp>
 #include <gdcontact/settings.hpp>
+#include <gdcontact/shapes.hpp>
 #include <gdcontact/types.hpp>
 #include <gdcontact/version.hpp>

@@ -78,13 +78,16 @@ typedef struct gdcSettings {
     /* GDC_ORDER_DEEPEST_FIRST_WHEN_LOADED's threshold (relative to the pair's size, 0..1; gdc::Settings
      * places it after contactOrder, C adds fields at the end only) */
     double loadedDepthFraction;
+    /* Points per whole turn of a cylinder's rim (4..64): gdc::Settings::rimPointsPerTurn */
+    int rimPointsPerTurn;
 } gdcSettings;
 
 /* Fills *settings with gdcontact's defaults (those of gdc::Settings). Does nothing for NULL. */
 GDCONTACT_C_API void gdcDefaultSettings(gdcSettings* settings) GDCONTACT_C_NOEXCEPT;
 
 /* gdc::ode::install: routes ODE's box–box, box–convex, convex–convex, box–plane and convex–plane
- * pairs to gdcontact. Call after dInitODE2() (and again after a new dInitODE2: dCloseODE forgets
+ * pairs, and cylinder–box/convex/plane/cylinder, capsule–box/convex/cylinder and sphere–convex, to
+ * gdcontact. Call after dInitODE2() (and again after a new dInitODE2: dCloseODE forgets
  * it; calling it again in one session replaces the settings). NULL: the defaults. Returns GDC_OK,
  * or an error code with ODE's colliders and the settings in use left as they were
  * (GDC_ERROR_INVALID_ARGUMENT: a field out of its range; GDC_ERROR_ODE_NOT_INITIALIZED: called

@@ -20,8 +20,11 @@
 
 namespace gdc::ode {
 
-/// Routes ODE's box–box, box–convex, convex–convex, box–plane and convex–plane pairs to
-/// gdcontact (through dSetColliderOverride). Call after dInitODE2(); dCloseODE() resets ODE's
+/// Routes ODE's box–box, box–convex, convex–convex, box–plane and convex–plane pairs, and its
+/// curved pairs that get one point where a region touches — cylinder–box, cylinder–convex,
+/// cylinder–plane, cylinder–cylinder, capsule–box, capsule–convex, capsule–cylinder and
+/// sphere–convex — to gdcontact (through dSetColliderOverride; docs/ode.md lists the pairs left
+/// to ODE and why). Call after dInitODE2(); dCloseODE() resets ODE's
 /// collider table and so forgets it (call it again after a new dInitODE2()). Calling it again in
 /// the same session replaces the settings. `settings` are checked by gdc::validate (InvalidInput
 /// naming the field and its bounds); called while ODE is not initialised it throws InvalidInput
@@ -31,8 +34,9 @@ GDCONTACT_API void install(const Settings& settings = {});
 
 /// dColliderFn-compatible: usable directly, in a near-callback, without install(). Follows ODE's
 /// contact convention (normal from o2 into o1, unit; depth ≥ 0; g1/g2 as received;
-/// side1 = side2 = -1; at most flags & 0xffff contacts at stride `skip`). Handles box, convex
-/// and plane geoms in any order. Uses the settings of the last install() (the defaults before
+/// side1 = side2 = -1; at most flags & 0xffff contacts at stride `skip`). Handles the pairs
+/// install() routes, in any order. A curved geom of a size ODE accepts and the core does not (a
+/// zero radius, a zero-length cylinder) is collided as the thinnest shape the core takes. Uses the settings of the last install() (the defaults before
 /// any). A dConvex gdcontact does not know (made by plain dCreateConvex, or changed by
 /// dGeomSetConvex) is collided by ODE's own convex collider, with one dMessage (docs/ode.md).
 /// Never throws: a failure inside gdcontact is reported through dMessage and yields 0 contacts;

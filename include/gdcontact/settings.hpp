@@ -107,6 +107,14 @@ struct Settings {
     /// Bounds [1, 16]: 16 is the size of a Manifold (kMaxManifoldPoints).
     int maxContacts = 6;
 
+    /// Stage 3, curved shapes — points per whole turn of a cylinder's rim (count): the points
+    /// placed on an arc of a cap's rim inside the other feature are at most 2π/this apart, and
+    /// the reduction then keeps maxContacts of them. More: the kept points hug the disc closer
+    /// (the support polygon of a standing cylinder, which sets the force that tips it, is that of
+    /// the points the reduction keeps), at more candidates to rank. 16 places a point every 22.5°.
+    /// Bounds [4, 64].
+    int rimPointsPerTurn = 16;
+
     /// Support mapping — polytopes with at most this many vertices are searched by brute force,
     /// larger ones by hill climbing over vertex adjacency (count). Measured cross-over: see
     /// docs/benchmarks.md.

@@ -256,4 +256,31 @@ Manifold collide(const Polytope& a, const Pose& poseA, const HalfSpace& b, const
     return manifold;
 }
 
+namespace {
+
+// A public shape as the table takes it, its size checked where it enters (enterRound); a
+// half-space normalised into `plane`.
+detail::Shape enter(const ShapeRef& shape, const char* which, detail::UnitHalfSpace& plane) {
+    switch (shape.kind()) {
+        case ShapeRef::Kind::Polytope: return detail::Shape::of(*shape.polytope());
+        case ShapeRef::Kind::HalfSpace:
+            plane = detail::normaliseHalfSpace(shape.halfSpace());
+            return detail::Shape::of(plane);
+        default: return detail::enterRound(shape.kind(), shape.radius(), shape.length(), which);
+    }
+}
+
+}  // namespace
+
+Manifold collide(const ShapeRef& a, const Pose& poseA, const ShapeRef& b, const Pose& poseB, const Settings& settings) {
+    // The poses first (a bad pose is reported before a bad shape), as the other queries do.
+    if (a.kind() != ShapeRef::Kind::HalfSpace && !poseA.isFinite()) detail::throwPoseNotFinite("A");
+    if (b.kind() != ShapeRef::Kind::HalfSpace && !poseB.isFinite()) detail::throwPoseNotFinite("B");
+    detail::UnitHalfSpace planeA{}, planeB{};
+    const detail::Shape shapeA = enter(a, "A", planeA), shapeB = enter(b, "B", planeB);
+    Manifold manifold;
+    detail::collidePair(shapeA, poseA, shapeB, poseB, detail::PairQuery{settings}, manifold);
+    return manifold;
+}
+
 }  // namespace gdc

@@ -6,6 +6,7 @@
 
 #include "contact/box_box.hpp"
 #include "contact/collide_general.hpp"
+#include "contact/round_pair.hpp"
 
 #include <string>
 #include <utility>
@@ -54,12 +55,22 @@ void mirrored(const Shape& a, const Pose& poseA, const Shape& b, const Pose& pos
     throw InvalidInput("two half-spaces are not a pair gdcontact collides");
 }
 
-// One table per order a caller may ask for: rows A's kind, columns B's (ShapeKind's order).
+// One table per order a caller may ask for: rows A's kind, columns B's (ShapeKind's order). Every
+// pair with a curved kind is the curved cell's; a half-space as A is the mirror of its pair.
 template <ImportanceOrder order>
 constexpr PairCells kCells = {{
-    /* Box */ {boxWithBox<order>, polytopes<order>, polytopeOnHalfSpace<order>},
-    /* Hull */ {polytopes<order>, polytopes<order>, polytopeOnHalfSpace<order>},
-    /* HalfSpace */ {mirrored<polytopeOnHalfSpace<order>>, mirrored<polytopeOnHalfSpace<order>>, noCell},
+    /* Box */ {boxWithBox<order>, polytopes<order>, collideRoundInto, collideRoundInto, collideRoundInto,
+               polytopeOnHalfSpace<order>},
+    /* Hull */ {polytopes<order>, polytopes<order>, collideRoundInto, collideRoundInto, collideRoundInto,
+                polytopeOnHalfSpace<order>},
+    /* Sphere */ {collideRoundInto, collideRoundInto, collideRoundInto, collideRoundInto, collideRoundInto,
+                  collideRoundInto},
+    /* Capsule */ {collideRoundInto, collideRoundInto, collideRoundInto, collideRoundInto, collideRoundInto,
+                   collideRoundInto},
+    /* Cylinder */ {collideRoundInto, collideRoundInto, collideRoundInto, collideRoundInto, collideRoundInto,
+                    collideRoundInto},
+    /* HalfSpace */ {mirrored<polytopeOnHalfSpace<order>>, mirrored<polytopeOnHalfSpace<order>>,
+                     mirrored<collideRoundInto>, mirrored<collideRoundInto>, mirrored<collideRoundInto>, noCell},
 }};
 
 }  // namespace

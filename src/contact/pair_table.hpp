@@ -9,14 +9,17 @@
 
 #include "contact/half_space.hpp"
 #include "shapes/feature.hpp"
+#include "shapes/round_shape.hpp"
 
 namespace gdc::detail {
 
 /// The shape kinds the pipeline composes. A Box is a Polytope made by Polytope::box (isBox():
-/// its closed forms apply); a Hull any other Polytope; a HalfSpace a plane's solid side, already
-/// normalised (UnitHalfSpace: bad planes are refused where they enter, normaliseHalfSpace).
-enum class ShapeKind : unsigned char { Box, Hull, HalfSpace };
-inline constexpr int kShapeKindCount = 3;
+/// its closed forms apply); a Hull any other Polytope; Sphere, Capsule and Cylinder the curved
+/// kinds (shapes/round_shape.hpp, sizes checked where they enter: enterRound); a HalfSpace a
+/// plane's solid side, already normalised (UnitHalfSpace: bad planes are refused where they enter,
+/// normaliseHalfSpace).
+enum class ShapeKind : unsigned char { Box, Hull, Sphere, Capsule, Cylinder, HalfSpace };
+inline constexpr int kShapeKindCount = 6;
 
 /// One side of a pair as the table takes it: the kind and the shape, borrowed for the call. The
 /// pose that goes with it is the caller's (a half-space's is ignored: it lives in the world).
@@ -24,9 +27,13 @@ struct Shape {
     ShapeKind kind;
     const Polytope* polytope = nullptr;        // Box, Hull
     const UnitHalfSpace* halfSpace = nullptr;  // HalfSpace
+    RoundShape round{};                        // Sphere, Capsule, Cylinder
     static Shape of(const Polytope& p) { return {p.isBox() ? ShapeKind::Box : ShapeKind::Hull, &p, nullptr}; }
     static Shape of(const UnitHalfSpace& h) { return {ShapeKind::HalfSpace, nullptr, &h}; }
-    bool isPolytope() const { return kind != ShapeKind::HalfSpace; }
+    static Shape of(ShapeKind roundKind, const RoundShape& r) { return {roundKind, nullptr, nullptr, r}; }
+    /// Every kind but the half-space is a body with a pose.
+    bool isPolytope() const { return kind <= ShapeKind::Hull; }
+    bool hasPose() const { return kind != ShapeKind::HalfSpace; }
 };
 
 /// What a caller asks of one query beyond the settings.
@@ -61,12 +68,17 @@ extern const PairCells kPairCells[2];
 /// checks and the lookup are a few instructions, a call around them more.
 inline void collidePair(const Shape& a, const Pose& poseA, const Shape& b, const Pose& poseB, const PairQuery& query,
                         Manifold& out) {
-    if (a.isPolytope() && !poseA.isFinite()) throwPoseNotFinite("A");
-    if (b.isPolytope() && !poseB.isFinite()) throwPoseNotFinite("B");
+    if (a.hasPose() && !poseA.isFinite()) throwPoseNotFinite("A");
+    if (b.hasPose() && !poseB.isFinite()) throwPoseNotFinite("B");
     const PairFunction cell =
         kPairCells[query.order == ImportanceOrder::Full ? 0 : 1].at[static_cast<int>(a.kind)][static_cast<int>(b.kind)];
     cell(a, poseA, b, poseB, query, out);
 }
+
+/// A curved shape as a public query names it (shapes.hpp), its size checked: throws InvalidInput
+/// naming `which` (A or B) for a radius that is not positive and finite, a cylinder's length that is
+/// not, or a capsule's that is negative or not finite.
+Shape enterRound(ShapeRef::Kind kind, double radius, double length, const char* which);
 
 /// A polytope A's pose and a half-space as a public query takes them: the pose checked first (a bad
 /// pose is reported before a bad plane), then the half-space normalised (normaliseHalfSpace).

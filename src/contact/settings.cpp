@@ -26,6 +26,7 @@ void validate(const Settings& settings) {
     requireWithin("angularTolerance", settings.angularTolerance, 0.0, 0.5, " rad");
     requireWithin("margin", settings.margin, 0.0, 1.0, " scene length units");
     requireWithin("maxContacts", settings.maxContacts, 1, static_cast<int>(kMaxManifoldPoints), " contacts");
+    requireWithin("rimPointsPerTurn", settings.rimPointsPerTurn, 4, 64, " points");
     requireWithin("bruteForceSupportLimit", settings.bruteForceSupportLimit, 0, 65536, " vertices");
     requireWithin("coplanarTolerance", settings.coplanarTolerance, 0.0, 0.1, " rad");
     const int method = static_cast<int>(settings.normalMethod);
@@ -48,7 +49,7 @@ void validate(const Settings& settings) {
 bool operator==(const Settings& a, const Settings& b) {
     return a.rayCastTolerance == b.rayCastTolerance && a.maxRayCastIterations == b.maxRayCastIterations &&
            a.angularTolerance == b.angularTolerance && a.margin == b.margin &&
-           a.spanContactRegion == b.spanContactRegion && a.maxContacts == b.maxContacts &&
+           a.spanContactRegion == b.spanContactRegion && a.maxContacts == b.maxContacts && a.rimPointsPerTurn == b.rimPointsPerTurn &&
            a.bruteForceSupportLimit == b.bruteForceSupportLimit && a.coplanarTolerance == b.coplanarTolerance &&
            a.normalMethod == b.normalMethod && a.manifoldReuseDistance == b.manifoldReuseDistance &&
            a.contactOrder == b.contactOrder && a.loadedDepthFraction == b.loadedDepthFraction &&

@@ -77,6 +77,7 @@ gdc::Settings toSettings(const gdcSettings& in, const char* caller = "gdcInstall
     out.maxBodyPairContacts = in.maxBodyPairContacts;
     out.bodyPairNormalTolerance = in.bodyPairNormalTolerance;
     out.loadedDepthFraction = in.loadedDepthFraction;
+    out.rimPointsPerTurn = in.rimPointsPerTurn;
     return out;  // the ranges are checked by gdc::validate (in gdc::ode::install), which names the field
 }
 
@@ -103,6 +104,7 @@ void gdcDefaultSettings(gdcSettings* settings) noexcept {
     settings->maxBodyPairContacts = defaults.maxBodyPairContacts;
     settings->bodyPairNormalTolerance = defaults.bodyPairNormalTolerance;
     settings->loadedDepthFraction = defaults.loadedDepthFraction;
+    settings->rimPointsPerTurn = defaults.rimPointsPerTurn;
 }
 
 int gdcInstall(const gdcSettings* settings) noexcept {

@@ -9,6 +9,8 @@
 #include "installed_settings.hpp"
 #include "ode_internals.hpp"
 #include "ode_real.hpp"
+#include "round_geoms.hpp"
+#include "geom_reading.hpp"
 #include "thread_cache.hpp"
 #include "write_contacts.hpp"
 #include "contact/pair_table.hpp"
@@ -27,35 +29,9 @@
 namespace gdc::ode {
 namespace {
 
-// ODE's geom classes by number (its enum, dSphereClass = 0 … dHeightfieldClass).
-const char* className(int geomClass) {
-    static const char* const names[] = {"sphere", "box",    "capsule",        "cylinder", "plane",
-                                        "ray",    "convex", "geom transform", "trimesh",  "heightfield"};
-    static_assert(dHeightfieldClass == 9, "ODE's geom class numbers");
-    return geomClass >= 0 && geomClass <= dHeightfieldClass ? names[geomClass] : "unsupported class";
-}
-
-std::shared_ptr<const Polytope> boxPolytopeOf(dGeomID box) {
-    dVector3 lengths;
-    dGeomBoxGetLengths(box, lengths);
-    return detail::boxPolytope(0.5 * lengths[0], 0.5 * lengths[1], 0.5 * lengths[2]);
-}
-
-// poseOf without its checks, for geoms whose class is already known to be placeable: ODE's arrays
-// read straight into the pose the core takes (in place, no copy).
-void readPoseInto(dGeomID geom, Pose& pose) {
-    const dReal* p = dGeomGetPosition(geom);
-    const dReal* r = dGeomGetRotation(geom);  // a dMatrix3: 3x4 row-major, the fourth column padding
-    pose.position = Vec3{p[0], p[1], p[2]};
-    for (int row = 0; row < 3; ++row)
-        for (int column = 0; column < 3; ++column) pose.rotation(row, column) = r[4 * row + column];
-}
-
-Pose readPose(dGeomID geom) {
-    Pose pose;
-    readPoseInto(geom, pose);
-    return pose;
-}
+using detail::className;
+using detail::comesFirst;
+using detail::readPoseInto;
 
 // Misuse of the adapter is a programming error: ODE's error handler (which by default prints
 // the message and exits) is the loud way ODE itself reports those.
@@ -64,9 +40,9 @@ Pose readPose(dGeomID geom) {
 }
 
 [[noreturn, gnu::cold, gnu::noinline]] void unsupportedClass(int geomClass) {
-    misuse(std::string("gdc::ode::collide handles box, convex (gdc::ode::createConvex) and plane "
-                       "geoms; it got a ") + className(geomClass) +
-           " (leave that pair to ODE: install() overrides only the supported pairs)");
+    misuse(std::string("gdc::ode::collide handles box, convex (gdc::ode::createConvex), plane, sphere, "
+                       "capsule and cylinder geoms in the pairs install() overrides; it got a ") +
+           className(geomClass) + " (leave that pair to ODE: install() overrides only the supported pairs)");
 }
 
 // The polytope (geom frame) of a box or known convex geom; nullptr for an unknown convex; misuse
@@ -88,18 +64,6 @@ const detail::ThreadCache::PlaneSlot& planeOf(dGeomID plane, detail::ThreadCache
     dVector4 parameters;  // a·x + b·y + c·z ≤ d is the solid; (a,b,c) points out of it
     dGeomPlaneGetParams(plane, parameters);
     return detail::planeSlot(cache, parameters);
-}
-
-// One fixed order per pair, so collide(a,b) and collide(b,a) make the same core call and their
-// answers are exact mirrors (ODE calls fn(b,a) for dCollide(a,b) on same-class pairs). The order
-// comes from the geoms' positions, not their addresses: a world rebuilt in the same state must
-// replay exactly, and allocation reuses addresses in another order (the address only breaks
-// exact ties).
-bool comesFirst(const Vec3& p, dGeomID geomP, const Vec3& q, dGeomID geomQ) {
-    if (p.x() != q.x()) return p.x() < q.x();
-    if (p.y() != q.y()) return p.y() < q.y();
-    if (p.z() != q.z()) return p.z() < q.z();
-    return std::less<const void*>{}(static_cast<const void*>(geomP), static_cast<const void*>(geomQ));
 }
 
 // Where a pair's cache comes from: handed over (spaceCollide found it while ODE's broad phase listed
@@ -157,8 +121,11 @@ const gdc::detail::AngularTolerance& angularToleranceOf(detail::ThreadCache& cac
 // once per plane; a plane the core refuses is normalised here again, which throws its error.
 void queryInto(const gdc::detail::Shape& a, const Pose& poseA, const gdc::detail::Shape& b, const Pose& poseB,
                const Settings& settings, detail::ThreadCache& cache, Manifold& out) {
-    // Only a hull's feature search takes the angular tolerance's cosine and sine (a box's are lazy).
-    const bool hull = a.kind == gdc::detail::ShapeKind::Hull || b.kind == gdc::detail::ShapeKind::Hull;
+    // Only a hull's or a curved kind's feature takes the angular tolerance's cosine and sine (a
+    // box's are lazy, a plane has none).
+    using gdc::detail::ShapeKind;
+    const bool hull = (a.kind != ShapeKind::Box && a.kind != ShapeKind::HalfSpace) ||
+                      (b.kind != ShapeKind::Box && b.kind != ShapeKind::HalfSpace);
     const gdc::detail::PairQuery query{settings, gdc::detail::ImportanceOrder::AmongEqualDepths,
                                        hull ? &angularToleranceOf(cache, settings.angularTolerance) : nullptr};
     gdc::detail::collidePair(a, poseA, b, poseB, query, out);
@@ -181,6 +148,81 @@ decltype(auto) collideLimited(const Settings& settings, int maxContacts, Collide
     return collideWith(pairSettings);
 }
 
+// One geom of a pair with a curved kind: its kind and what goes with it (a curved size, a polytope,
+// a plane, the pose). False for a plain convex (`unregistered`: ODE's collider).
+bool resolveSide(dGeomID geom, int geomClass, const Settings& settings, detail::ThreadCache& cache, Pose& pose,
+                 gdc::detail::ShapeKind& kind, gdc::detail::RoundShape& round, const Polytope*& polytope,
+                 const detail::ThreadCache::PlaneSlot*& plane, bool& unregistered) {
+    polytope = nullptr;  // a reused pair (spaceCollide's slots) may hold an earlier pair's
+    if (geomClass == dPlaneClass) {
+        kind = gdc::detail::ShapeKind::HalfSpace;
+        plane = &planeOf(geom, cache);
+        return true;
+    }
+    readPoseInto(geom, pose);
+    if (detail::isRoundClass(geomClass)) {
+        detail::readRound(geom, geomClass, kind, round);
+        return true;
+    }
+    polytope = polytopeFor(geom, geomClass, pose, settings, cache, unregistered);
+    if (polytope) kind = polytope->isBox() ? gdc::detail::ShapeKind::Box : gdc::detail::ShapeKind::Hull;
+    return polytope != nullptr;
+}
+
+// A pair with a curved geom (kind Round), ordered as polytope pairs are (a plane always B).
+bool resolveRound(const Settings& settings, detail::ThreadCache& cache, detail::ResolvedPair& out) {
+    using Kind = detail::ResolvedPair::Kind;
+    if (!detail::isGdcontactPair(out.class1, out.class2))
+        unsupportedClass(detail::isRoundClass(out.class1) ? out.class2 : out.class1);
+    bool unregistered = false;
+    out.plane = nullptr;
+    const bool usable =
+        resolveSide(out.o1, out.class1, settings, cache, out.pose1(), out.kind1, out.round1, out.polytope1, out.plane,
+                    unregistered) &&
+        resolveSide(out.o2, out.class2, settings, cache, out.pose2(), out.kind2, out.round2, out.polytope2, out.plane,
+                    unregistered);
+    out.kind = usable ? Kind::Round : Kind::Ode;
+    if (!usable) return !unregistered;
+    if (out.class1 == dPlaneClass) out.flip = true;
+    else if (out.class2 == dPlaneClass) out.flip = false;
+    else out.flip = comesFirst(out.pose2().position, out.o2, out.pose1().position, out.o1);
+    return true;
+}
+
+// One geom of a Round pair as the core takes it, with its bounding and inscribed radii.
+gdc::detail::Shape shapeOf(const detail::ResolvedPair& pair, bool second, double& radius, double& inradius) {
+    const gdc::detail::ShapeKind kind = second ? pair.kind2 : pair.kind1;
+    const Polytope* polytope = second ? pair.polytope2 : pair.polytope1;
+    radius = inradius = 0;
+    if (kind == gdc::detail::ShapeKind::HalfSpace) return planeShape(*pair.plane);
+    if (kind == gdc::detail::ShapeKind::Box || kind == gdc::detail::ShapeKind::Hull) {
+        radius = polytope->radius(), inradius = polytope->inradius();
+        return gdc::detail::Shape::of(*polytope);
+    }
+    const gdc::detail::RoundShape& round = second ? pair.round2 : pair.round1;
+    radius = detail::roundRadius(kind, round), inradius = detail::roundInradius(kind, round);
+    return gdc::detail::Shape::of(kind, round);
+}
+
+// A Round pair: the core's cell for the curved kinds (no pair cache: its entries hold polytopes).
+int collideRound(const detail::ResolvedPair& pair, int maxContacts, dContactGeom* contact, int skip,
+                 const Settings& settings, detail::ThreadCache& cache) {
+    double radius1, radius2, inradius1, inradius2;
+    const gdc::detail::Shape shape1 = shapeOf(pair, false, radius1, inradius1);
+    const gdc::detail::Shape shape2 = shapeOf(pair, true, radius2, inradius2);
+    const Pose& pose1 = shape1.hasPose() ? pair.pose1() : kWorld;
+    const Pose& pose2 = shape2.hasPose() ? pair.pose2() : kWorld;
+    Manifold& manifold = cache.scratch;
+    collideLimited(settings, maxContacts, [&](const Settings& pairSettings) {
+        pair.flip ? queryInto(shape2, pose2, shape1, pose1, pairSettings, cache, manifold)
+                  : queryInto(shape1, pose1, shape2, pose2, pairSettings, cache, manifold);
+    });
+    if (manifold.empty()) return 0;
+    return detail::writeContacts(manifold, pair.flip, radius1 + radius2, maxContacts, settings.contactOrder,
+                                 detail::loadedDepthOf(settings, inradius1, inradius2), pair.o1, pair.o2, contact, skip,
+                                 true);
+}
+
 // detail::resolvePair, inlined into gdc::ode::collide's path.
 [[gnu::always_inline]] inline bool resolve(dGeomID o1, int class1, dGeomID o2, int class2, const Settings& settings,
                                            detail::ThreadCache& cache, detail::ResolvedPair& out) {
@@ -189,6 +231,7 @@ decltype(auto) collideLimited(const Settings& settings, int maxContacts, Collide
     out.o2 = o2;
     out.class1 = class1;
     out.class2 = class2;
+    if (detail::isRoundClass(class1) || detail::isRoundClass(class2)) return resolveRound(settings, cache, out);
     if (class1 == dPlaneClass || class2 == dPlaneClass) {
         // The plane is always the core's B; the core's A is o2 when o1 is the plane.
         const bool planeFirst = class1 == dPlaneClass;
@@ -280,6 +323,7 @@ decltype(auto) collideLimited(const Settings& settings, int maxContacts, Collide
             return collidePolytopes(pair, maxContacts, contact, skip, settings, cache, pairCache);
         case detail::ResolvedPair::Kind::PolytopePlane:
             return collidePolytopeWithPlane(pair, maxContacts, contact, skip, settings, cache, pairCache);
+        case detail::ResolvedPair::Kind::Round: return collideRound(pair, maxContacts, contact, skip, settings, cache);
         case detail::ResolvedPair::Kind::Ode: break;
     }
     return detail::collideWithOde(pair.o1, pair.class1, pair.o2, pair.class2, maxContacts, contact, skip);
@@ -386,11 +430,9 @@ void install(const Settings& settings) {
     // A new session (or new settings) says its one-time messages again.
     detail::resetConvexMessages();
     detail::setInstalledSettings(settings);
-    dSetColliderOverride(dBoxClass, dBoxClass, &collideInstalled);
-    dSetColliderOverride(dBoxClass, dConvexClass, &collideInstalled);
-    dSetColliderOverride(dConvexClass, dConvexClass, &collideInstalled);
-    dSetColliderOverride(dBoxClass, dPlaneClass, &collideInstalled);
-    dSetColliderOverride(dConvexClass, dPlaneClass, &collideInstalled);
+    for (int class1 = 0; class1 < dGeomNumClasses; ++class1)
+        for (int class2 = class1; class2 < dGeomNumClasses; ++class2)
+            if (detail::isGdcontactPair(class1, class2)) dSetColliderOverride(class1, class2, &collideInstalled);
 }
 
 int collide(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip,
@@ -400,35 +442,6 @@ int collide(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip,
 
 int collide(dGeomID o1, dGeomID o2, int flags, dContactGeom* contact, int skip) {
     return collideGuarded(o1, o2, flags, contact, skip, nullptr);
-}
-
-std::shared_ptr<const Polytope> polytopeOf(dGeomID geom) {
-    if (!geom) throw InvalidInput("gdc::ode::polytopeOf: null geom");
-    switch (dGeomGetClass(geom)) {
-        case dBoxClass: return boxPolytopeOf(geom);
-        case dConvexClass: return detail::registeredConvex(geom);
-        default: return nullptr;
-    }
-}
-
-Pose poseOf(dGeomID geom) {
-    if (!geom) throw InvalidInput("gdc::ode::poseOf: null geom");
-    if (dGeomIsSpace(geom) || dGeomGetClass(geom) == dPlaneClass)
-        throw InvalidInput("gdc::ode::poseOf: a plane or space has no pose");
-    return readPose(geom);
-}
-
-std::size_t liveConvexCount() { return detail::registeredConvexCount(); }
-
-void setPairCacheEnabled(bool enabled) { detail::pairCacheTable().setEnabled(enabled); }
-
-void setPairCacheCapacity(std::size_t entries) { detail::pairCacheTable().setCapacity(entries); }
-
-void clearPairCache() { detail::pairCacheTable().clear(); }
-
-PairCacheStats pairCacheStats() {
-    const detail::PairCacheTable::Stats stats = detail::pairCacheTable().stats();
-    return PairCacheStats{stats.entries, stats.capacity, stats.bytes, stats.repeated, stats.carried, stats.computed};
 }
 
 }  // namespace gdc::ode

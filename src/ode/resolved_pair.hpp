@@ -7,6 +7,7 @@
 #pragma once
 
 #include "thread_cache.hpp"
+#include "contact/pair_table.hpp"
 
 #include <gdcontact/pair_cache.hpp>
 
@@ -18,16 +19,21 @@ struct ResolvedPair {
     enum class Kind : unsigned char {
         Polytopes,      // box or known convex, both
         PolytopePlane,  // box or known convex against a plane
+        Round,          // a sphere, capsule or cylinder against a body or a plane (round_geoms.hpp)
         Ode,            // a convex geom whose hull gdcontact does not know: ODE's collider
     };
     dGeomID o1 = nullptr, o2 = nullptr;
     int class1 = 0, class2 = 0;
     Kind kind = Kind::Ode;
-    // Polytopes: the core's A is o2 (the pair is ordered by position). PolytopePlane: o1 is the
-    // plane (the plane is always the core's B).
+    // Polytopes and Round: the core's A is o2 (the pair is ordered by position; a plane is always
+    // the core's B). PolytopePlane: o1 is the plane.
     bool flip = false;
     const Polytope* polytope1 = nullptr;  // o1's (PolytopePlane: the non-plane geom's), geom frame
     const Polytope* polytope2 = nullptr;  // o2's (Polytopes only)
+    // Round: each geom's kind (a plane's HalfSpace), a curved one's size, a polytope's in
+    // polytope1/polytope2 by geom; the poses by geom (a plane's unused).
+    gdc::detail::ShapeKind kind1 = gdc::detail::ShapeKind::HalfSpace, kind2 = gdc::detail::ShapeKind::HalfSpace;
+    gdc::detail::RoundShape round1, round2;
     // Likewise, written by resolvePair (pose2 only for Polytopes). Not default-initialised: a
     // default Pose is 12 stores, twice on every gdc::ode::collide call.
     Pose& pose1() { return poses[0].pose; }
@@ -46,8 +52,7 @@ private:
     UninitialisedPose poses[2];
 };
 
-/// Resolves (o1, o2), whose classes are box, convex (gdc::ode::createConvex) or plane and not both
-/// planes. The box polytopes are borrowed from the thread's cache (see ThreadCache::pinnedBoxes
+/// Resolves (o1, o2), a pair of classes gdcontact collides (isGdcontactPair). The box polytopes are borrowed from the thread's cache (see ThreadCache::pinnedBoxes
 /// for keeping them beyond kBorrowedBoxSizes lookups). False (kind Ode) when a convex geom is not
 /// one gdcontact created (a plain dCreateConvex geom). Throws on a failed allocation.
 bool resolvePair(dGeomID o1, int class1, dGeomID o2, int class2, const Settings& settings, ThreadCache& cache,

@@ -20,6 +20,7 @@
 #include "body_pair.hpp"
 #include "pair_cache_table.hpp"
 #include "resolved_pair.hpp"
+#include "round_geoms.hpp"
 #include "space_collide_profile.hpp"
 #include "convex_registry.hpp"
 #include "installed_settings.hpp"
@@ -95,17 +96,11 @@ struct Call {
     std::size_t serialGdcontactPairs = 0;       // profiling, serial: how many
 };
 
-// Box, convex or plane (not plane–plane): the classes collide() handles.
-bool isGdcontactClass(int geomClass) {
-    return geomClass == dBoxClass || geomClass == dPlaneClass || geomClass == dConvexClass;
-}
-
 void addPair(Call& call, dGeomID o1, dGeomID o2) {
     const int class1 = dGeomGetClass(o1);
     const int class2 = dGeomGetClass(o2);
     Scratch& scratch = call.scratch;
-    const bool ourClasses =
-        !(class1 == dPlaneClass && class2 == dPlaneClass) && isGdcontactClass(class1) && isGdcontactClass(class2);
+    const bool ourClasses = detail::isGdcontactPair(class1, class2);
     if (ourClasses && !call.serial) {
         // Resolved here, once, on the calling thread: ODE's getters recompute a stale world pose
         // here (the broad phase has normally done it), so the workers read only the resolved pair.

@@ -1,0 +1,266 @@
+// The paper's three stages for every pair with a curved kind (a sphere, a capsule, a cylinder) on
+// either side, against any body or a half-space: the pair table's cells for those kinds
+// (round_pair.hpp). A curved kind gives the method what a polytope gives it — a support point and a
+// Gauss-map feature (shapes/round_shape.hpp) — so the stages are the general ones on support
+// functions: stage 1 the growth distance by the GJK ray cast on (A − p_A) − (B − p_B), refined among
+// the features' planes (a face, a cap) where one of them needs less translation; stage 2 one feature
+// per body; stage 3 their exact intersection in the contact plane (disc_intersection.hpp), with the
+// depth confirmation along n. Everything is computed in A's frame.
+#include "contact/round_pair.hpp"
+
+#include "contact/collide_general.hpp"
+#include "contact/disc_intersection.hpp"
+#include "contact/feature_geometry.hpp"
+#include "contact/gauss_map.hpp"
+#include "contact/plane_contacts.hpp"
+#include "geometry/growth_distance.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace gdc::detail {
+namespace {
+
+// One body of the pair in A's frame: its support and its feature for a direction.
+struct Body {
+    ShapeKind kind;
+    const Polytope* polytope;
+    RoundShape round;
+    Pose toA;
+    Vec3 centre;    // the contraction point (a polytope's centroid, a curved kind's centre)
+    double radius;  // bounds the body about `centre`
+    int bruteForceLimit;
+    mutable int lastVertex = -1;  // a hull's climb starts from its previous support (warm start)
+
+    Body(const Shape& shape, const Pose& toA_, int limit)
+        : kind(shape.kind), polytope(shape.polytope), round(shape.round), toA(toA_), bruteForceLimit(limit) {
+        switch (kind) {
+            case ShapeKind::Box:
+            case ShapeKind::Hull:
+                centre = toA.apply(polytope->centroid()), radius = polytope->radius();
+                break;
+            case ShapeKind::Sphere: centre = toA.position, radius = round.radius; break;
+            case ShapeKind::Capsule: centre = toA.position, radius = round.radius + round.halfLength; break;
+            default: centre = toA.position, radius = std::hypot(round.radius, round.halfLength); break;
+        }
+    }
+
+    Vec3 support(const Vec3& direction) const {
+        const Vec3 local = toA.rotation.transpose() * direction;
+        switch (kind) {
+            case ShapeKind::Box:
+            case ShapeKind::Hull:
+                lastVertex = polytope->supportVertex(local, bruteForceLimit, lastVertex);
+                return toA.apply(polytope->vertices()[lastVertex]);
+            case ShapeKind::Sphere: return toA.apply(sphereSupport(round, local));
+            case ShapeKind::Capsule: return toA.apply(capsuleSupport(round, local));
+            default: return toA.apply(cylinderSupport(round, local));
+        }
+    }
+
+    // The Gauss-map feature for the unit `direction` (A's frame, pointing away from the body).
+    AnyFeature feature(const Vec3& direction, const AngularTolerance& tolerance) const {
+        const Vec3 local = toA.rotation.transpose() * direction;
+        switch (kind) {
+            case ShapeKind::Box:
+            case ShapeKind::Hull: {
+                const int support = polytope->supportVertex(local, bruteForceLimit, lastVertex);
+                AnyFeature any;
+                any.id = selectFeature(*polytope, local, support, tolerance);
+                SmallVector<int, 8> pieces;
+                featurePieces(*polytope, any.id, local, tolerance, pieces);
+                any.geometry = featureGeometry(*polytope, any.id, pieces, toA);
+                return any;
+            }
+            case ShapeKind::Sphere: return sphereFeature(round, local, toA);
+            case ShapeKind::Capsule: return capsuleFeature(round, local, toA, tolerance);
+            default: return cylinderFeature(round, local, toA, tolerance);
+        }
+    }
+};
+
+// The support points of one ray cast, so that its final simplex names the points of A and B it
+// came from (a curved kind has no vertex indices: each support gets an index of its own).
+struct SupportLog {
+    std::vector<Vec3> onA, onB;
+    int add(const Vec3& a, const Vec3& b) {
+        onA.push_back(a), onB.push_back(b);
+        return static_cast<int>(onA.size()) - 1;
+    }
+};
+
+// The outward normal of a planar feature (a face, a cap), in A's frame; zero for any other.
+Vec3 planeOf(const AnyFeature& feature) {
+    if (feature.isDisc) return feature.disc.axis;
+    return feature.geometry.type == FeatureType::Face ? feature.geometry.planeNormal : Vec3::Zero();
+}
+
+// The half-space's feature: a square of its plane around A's projection, wider than A's shadow, so
+// that the intersection is A's feature itself, lifted onto the plane.
+AnyFeature planeFeature(const PlaneInA& plane, const Body& a) {
+    AnyFeature feature;
+    feature.geometry.type = FeatureType::Face;
+    feature.geometry.planeNormal = plane.m;
+    feature.geometry.planeOffset = plane.offset;
+    Vec3 u, v;
+    planeBasis(plane.m, u, v);
+    const Vec3 centre = a.centre + plane.depthOf(a.centre) * plane.m;
+    const double half = 2 * a.radius;
+    for (const Vec2& corner : {Vec2(1, 1), Vec2(-1, 1), Vec2(-1, -1), Vec2(1, -1)})
+        feature.geometry.points.push_back(centre + half * (corner.x() * u + corner.y() * v));
+    feature.id = {FeatureType::Face, 0};
+    return feature;
+}
+
+// Where the ray cast fails (coincident contraction points): the direction of least overlap among
+// the planes of both bodies' features along the axes of both frames.
+Vec3 fallbackNormal(const Body& a, const Body& b, const AngularTolerance& tolerance) {
+    Vec3 best = Vec3::UnitZ();
+    double bestOverlap = INFINITY;
+    for (const Pose* frame : {&a.toA, &b.toA})
+        for (int axis = 0; axis < 3; ++axis)
+            for (const double sign : {1.0, -1.0}) {
+                const Vec3 direction = sign * frame->rotation.col(axis);
+                const double overlap = direction.dot(a.support(direction)) - direction.dot(b.support(-direction));
+                if (overlap < bestOverlap) bestOverlap = overlap, best = direction;
+            }
+    (void)tolerance;
+    return best;
+}
+
+}  // namespace
+
+void collideRoundInto(const Shape& shapeA, const Pose& poseA, const Shape& shapeB, const Pose& poseB,
+                      const PairQuery& query, Manifold& out) {
+    const Settings& settings = query.settings;
+    clearManifold(out);
+    const AngularTolerance angular =
+        query.angularTolerance ? *query.angularTolerance : AngularTolerance(settings.angularTolerance);
+    const Body a(shapeA, Pose{}, settings.bruteForceSupportLimit);
+    const bool onPlane = shapeB.kind == ShapeKind::HalfSpace;
+    const Body b(onPlane ? shapeA : shapeB, onPlane ? Pose{} : poseA.relative(poseB), settings.bruteForceSupportLimit);
+    const double size = a.radius + (onPlane ? 0.0 : b.radius);
+    const double tolerance = 1e-9 * size;
+    const double minimumDepth = -settings.margin;
+    auto overlapAlong = [&](const Vec3& n) { return n.dot(a.support(n)) - n.dot(b.support(-n)); };
+
+    Vec3 normal;
+    double normalOverlap;
+    AnyFeature featureA, featureB;
+    PlaneInA plane{};
+    if (onPlane) {
+        // Stage 1 on a plane: its normal is exact; the overlap is the depth of A's support.
+        plane = planeInA(*shapeB.halfSpace, poseA);
+        normal = -plane.m;
+        normalOverlap = plane.depthOf(a.support(normal));
+        if (normalOverlap < minimumDepth - tolerance) return;
+        featureA = a.feature(normal, angular);
+        featureB = planeFeature(plane, a);
+    } else {
+        const Vec3 offset = b.centre - a.centre;
+        const double distance = offset.norm();
+        if (distance > size + settings.margin + tolerance) return;  // the bounding spheres are apart
+        // Stage 1: the growth distance, the exit of the ray along p_B − p_A through C. A curved
+        // surface is met only in the limit: each support adds a point, and the cast stops within
+        // its tolerance of the surface.
+        bool found = false;
+        if (distance > 1e-12 * size) {
+            const Vec3 w = offset / distance;
+            SupportLog log;
+            auto support = [&](const Vec3& d) {
+                const Vec3 onA = a.support(d), onB = b.support(-d);
+                const int id = log.add(onA, onB);
+                return SupportPoint{(onA - a.centre) - (onB - b.centre), id, id};
+            };
+            const double start = w.dot(support(w).point) + 0.5 * size;
+            const RayCastResult cast = gjkRayCast(support, start * w, -w, settings.rayCastTolerance * size,
+                                                  settings.maxRayCastIterations);
+            if (cast.hit && start - cast.lambda > 0 && cast.normal.squaredNorm() > 0 && cast.normal.allFinite())
+                normal = cast.normal.normalized(), found = true;
+        }
+        if (!found) normal = fallbackNormal(a, b, angular);
+        normalOverlap = overlapAlong(normal);
+        if (normalOverlap < minimumDepth - tolerance) return;
+        // Stage 2, and the normal among the features' planes: a face or a cap along which the pair
+        // overlaps less is the contact normal (a cap resting on a face: the face's, exactly).
+        featureA = a.feature(normal, angular);
+        featureB = b.feature(-normal, angular);
+        Vec3 best = normal;
+        double bestOverlap = normalOverlap;
+        for (const Vec3& candidate : {planeOf(featureA), Vec3(-planeOf(featureB))}) {
+            if (!(candidate.squaredNorm() > 0)) continue;
+            const double overlap = overlapAlong(candidate);
+            if (overlap < bestOverlap - tolerance) best = candidate, bestOverlap = overlap;
+        }
+        if (best != normal) {
+            normal = best, normalOverlap = bestOverlap;
+            if (normalOverlap < minimumDepth - tolerance) return;
+            featureA = a.feature(normal, angular);
+            featureB = b.feature(-normal, angular);
+        }
+    }
+
+    // Stage 3: the features' intersection in the contact plane, each point with its own depth.
+    LiftedPoints kept;
+    intersectAnyFeatures(featureA, featureB, normal, tolerance, minimumDepth, settings.spanContactRegion,
+                         settings.rimPointsPerTurn, std::min(settings.rimPointsPerTurn, settings.maxContacts), kept);
+    double deepest = -INFINITY;
+    for (const LiftedPoint& point : kept) deepest = std::max(deepest, point.depth);
+    // The depth confirmation: where the intersection falls short of the supports' overlap along n
+    // (the supports do not face each other across the contact plane — an overhang), the exact
+    // depth along n is where the ray along n leaves A − B; its touching points are a contact.
+    if (!onPlane && deepest < normalOverlap - 1e-7 * size) {
+        SupportLog log;
+        auto support = [&](const Vec3& d) {
+            const Vec3 onA = a.support(d), onB = b.support(-d);
+            const int id = log.add(onA, onB);
+            return SupportPoint{onA - onB, id, id};
+        };
+        const double start = normal.dot(support(normal).point) + 0.5 * size;
+        const RayCastResult cast =
+            gjkRayCast(support, start * normal, -normal, settings.rayCastTolerance * size, settings.maxRayCastIterations);
+        const double depth = start - cast.lambda;
+        if (cast.hit && cast.simplexCount > 0 && depth >= minimumDepth - tolerance && depth > deepest + tolerance) {
+            Vec3 onA = Vec3::Zero(), onB = Vec3::Zero();
+            for (int i = 0; i < cast.simplexCount; ++i) {
+                onA += cast.weights[i] * log.onA[cast.simplex[i].vertexA];
+                onB += cast.weights[i] * log.onB[cast.simplex[i].vertexB];
+            }
+            // The point on B is B's witness itself (a convex combination of B's supports: inside
+            // B); the one on A is it moved by the depth along n, A's witness within the cast's
+            // tolerance.
+            Vec3 u, v;
+            planeBasis(normal, u, v);
+            const double measured = (onA - onB).dot(normal);
+            const Vec3 middle = onB + 0.5 * measured * normal;
+            kept.push_back({middle, measured, Vec2(middle.dot(u), middle.dot(v)), -1, -1});
+        }
+    }
+    if (kept.empty()) return;
+    const Vec3 centroids[2] = {a.centre, b.centre};
+    emitManifold(kept, normal, poseA, settings, tolerance, centroids, onPlane ? 1 : 2, out);
+    out.featureA = featureA.id;
+    out.featureB = featureB.id;
+}
+
+Shape enterRound(ShapeRef::Kind kind, double radius, double length, const char* which) {
+    const std::string name = kind == ShapeRef::Kind::Sphere    ? "sphere"
+                             : kind == ShapeRef::Kind::Capsule ? "capsule"
+                                                               : "cylinder";
+    if (!(std::isfinite(radius) && radius > 0))
+        throw InvalidInput("the " + name + " " + which + " has radius " + std::to_string(radius) +
+                           ": it must be positive and finite");
+    if (kind == ShapeRef::Kind::Cylinder && !(std::isfinite(length) && length > 0))
+        throw InvalidInput("the cylinder " + std::string(which) + " has length " + std::to_string(length) +
+                           ": it must be positive and finite");
+    if (kind == ShapeRef::Kind::Capsule && !(std::isfinite(length) && length >= 0))
+        throw InvalidInput("the capsule " + std::string(which) + " has length " + std::to_string(length) +
+                           ": it must be finite and not negative");
+    const ShapeKind shapeKind = kind == ShapeRef::Kind::Sphere    ? ShapeKind::Sphere
+                                : kind == ShapeRef::Kind::Capsule ? ShapeKind::Capsule
+                                                                  : ShapeKind::Cylinder;
+    return Shape::of(shapeKind, RoundShape{radius, kind == ShapeRef::Kind::Sphere ? 0.0 : 0.5 * length});
+}
+
+}  // namespace gdc::detail
