@@ -132,7 +132,14 @@ void insideArcs(const Rim& rim, SmallVector<double, 16>& angles, const RimSpacin
     const double step = spacing.step;
     if (angles.empty()) {
         if (!inside(rim.at(0))) return;
-        for (int k = 0; k < spacing.whole; ++k) out.push_back(rim.at(kTwoPi * k / spacing.whole));
+        // The regular polygon by turning (cos, sin) by one step at a time: one sincos, not one a point.
+        const double stepCos = std::cos(kTwoPi / spacing.whole), stepSin = std::sin(kTwoPi / spacing.whole);
+        double c = 1, s = 0;
+        for (int k = 0; k < spacing.whole; ++k) {
+            out.push_back(rim.centre + c * rim.e1 + s * rim.e2);
+            const double next = c * stepCos - s * stepSin;
+            s = s * stepCos + c * stepSin, c = next;
+        }
         return;
     }
     std::sort(angles.begin(), angles.end());
@@ -181,22 +188,39 @@ template <class Keep>
 void discWithDisc(const Rim& rimA, const Rim& rimB, double slackA, double slackB, const RimSpacing& step,
                   SmallVector<double, 16>& anglesA, SmallVector<double, 16>& anglesB, Keep keep,
                   SmallVector<Vec2, 32>& out) {
-    constexpr int kSamples = 96;
+    constexpr int kSamples = 64;
     auto outside = [&](double s) { return rimA.normalised(rimB.at(s)).squaredNorm() - 1; };
+    // outside(s) and its derivative, for Newton's steps inside a bracket.
+    auto outsideWithSlope = [&](double s, double& slope) {
+        const double c = std::cos(s), si = std::sin(s);
+        const Vec2 q = rimA.normalised(rimB.centre + c * rimB.e1 + si * rimB.e2);
+        const Vec2 along = rimA.normalised(rimA.centre - si * rimB.e1 + c * rimB.e2);  // d/ds, linear part
+        slope = 2 * q.dot(along);
+        return q.squaredNorm() - 1;
+    };
     const std::size_t givenA = anglesA.size(), givenB = anglesB.size();
     double previous = outside(0);
     for (int k = 1; k <= kSamples && anglesB.size() <= givenB + 8; ++k) {
         double low = kTwoPi * (k - 1) / kSamples, high = kTwoPi * k / kSamples;
         const double value = outside(high);
         if ((previous < 0) != (value < 0)) {
+            // Newton's steps from the bracket's middle, each kept inside the bracket (a step that
+            // leaves it bisects instead), until the step is below rounding.
             const bool lowNegative = previous < 0;
+            double root = 0.5 * (low + high);
             for (int i = 0; i < 60; ++i) {
-                const double middle = 0.5 * (low + high);
-                ((outside(middle) < 0) == lowNegative ? low : high) = middle;
+                double slope;
+                const double f = outsideWithSlope(root, slope);
+                ((f < 0) == lowNegative ? low : high) = root;
+                double next = root - f / slope;
+                if (!(next > low && next < high)) next = 0.5 * (low + high);
+                const bool done = std::abs(next - root) <= 1e-15 * kTwoPi || high - low <= 1e-15 * kTwoPi;
+                root = next;
+                if (done) break;
             }
-            const Vec2 crossing = rimB.at(0.5 * (low + high));
+            const Vec2 crossing = rimB.at(root);
             out.push_back(crossing);
-            anglesB.push_back(0.5 * (low + high));
+            anglesB.push_back(root);
             anglesA.push_back(rimA.angleOf(crossing));
         }
         previous = value;
