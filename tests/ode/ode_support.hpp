@@ -37,6 +37,15 @@ inline std::vector<dContactGeom> collideThroughOde(dGeomID o1, dGeomID o2, int m
 
 inline Vec3 toVec(const dReal* v) { return Vec3(v[0], v[1], v[2]); }
 
+/// A body's rotation as a Mat3 (ODE's dMatrix3 is 3×4 row-major, the fourth column padding).
+inline Mat3 bodyRotation(dBodyID body) {
+    const dReal* r = dBodyGetRotation(body);
+    Mat3 m;
+    for (int row = 0; row < 3; ++row)
+        for (int column = 0; column < 3; ++column) m(row, column) = r[4 * row + column];
+    return m;
+}
+
 inline void setRotation(dGeomID geom, const Mat3& rotation) {
     dMatrix3 matrix;
     for (int row = 0; row < 3; ++row) {

@@ -64,14 +64,6 @@ struct World {
     }
 };
 
-Mat3 bodyRotation(dBodyID body) {
-    const dReal* r = dBodyGetRotation(body);
-    Mat3 m;
-    for (int row = 0; row < 3; ++row)
-        for (int column = 0; column < 3; ++column) m(row, column) = r[4 * row + column];
-    return m;
-}
-
 // Angle between the body axis closest to the vertical and the vertical.
 double alignmentError(dBodyID body) {
     const Mat3 rotation = bodyRotation(body);
