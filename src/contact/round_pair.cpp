@@ -93,7 +93,7 @@ struct SupportLog {
 };
 
 // The outward normal of a planar feature (a face, a cap), in A's frame; zero for any other.
-Vec3 planeOf(const AnyFeature& feature) {
+Vec3 planeNormalOf(const AnyFeature& feature) {
     if (feature.isDisc) return feature.disc.axis;
     return feature.geometry.type == FeatureType::Face ? feature.geometry.planeNormal : Vec3::Zero();
 }
@@ -115,9 +115,9 @@ AnyFeature planeFeature(const PlaneInA& plane, const Body& a) {
     return feature;
 }
 
-// Where the ray cast fails (coincident contraction points): the direction of least overlap among
-// the planes of both bodies' features along the axes of both frames.
-Vec3 fallbackNormal(const Body& a, const Body& b, const AngularTolerance& tolerance) {
+// Where the ray cast has no answer (coincident contraction points): the direction of least overlap
+// among the axes of both bodies' frames (a box's face normals, a cylinder's axis).
+Vec3 fallbackNormal(const Body& a, const Body& b) {
     Vec3 best = Vec3::UnitZ();
     double bestOverlap = INFINITY;
     for (const Pose* frame : {&a.toA, &b.toA})
@@ -127,7 +127,6 @@ Vec3 fallbackNormal(const Body& a, const Body& b, const AngularTolerance& tolera
                 const double overlap = direction.dot(a.support(direction)) - direction.dot(b.support(-direction));
                 if (overlap < bestOverlap) bestOverlap = overlap, best = direction;
             }
-    (void)tolerance;
     return best;
 }
 
@@ -141,6 +140,7 @@ void collideRoundInto(const Shape& shapeA, const Pose& poseA, const Shape& shape
         query.angularTolerance ? *query.angularTolerance : AngularTolerance(settings.angularTolerance);
     const Body a(shapeA, Pose{}, settings.bruteForceSupportLimit);
     const bool onPlane = shapeB.kind == ShapeKind::HalfSpace;
+    // On a plane B is not a body: `b` is then a stand-in never asked for a support or a feature.
     const Body b(onPlane ? shapeA : shapeB, onPlane ? Pose{} : poseA.relative(poseB), settings.bruteForceSupportLimit);
     const double size = a.radius + (onPlane ? 0.0 : b.radius);
     const double tolerance = 1e-9 * size;
@@ -181,7 +181,7 @@ void collideRoundInto(const Shape& shapeA, const Pose& poseA, const Shape& shape
             if (cast.hit && start - cast.lambda > 0 && cast.normal.squaredNorm() > 0 && cast.normal.allFinite())
                 normal = cast.normal.normalized(), found = true;
         }
-        if (!found) normal = fallbackNormal(a, b, angular);
+        if (!found) normal = fallbackNormal(a, b);
         normalOverlap = overlapAlong(normal);
         if (normalOverlap < minimumDepth - tolerance) return;
         // Stage 2, and the normal among the features' planes: a face or a cap along which the pair
@@ -190,7 +190,7 @@ void collideRoundInto(const Shape& shapeA, const Pose& poseA, const Shape& shape
         featureB = b.feature(-normal, angular);
         Vec3 best = normal;
         double bestOverlap = normalOverlap;
-        for (const Vec3& candidate : {planeOf(featureA), Vec3(-planeOf(featureB))}) {
+        for (const Vec3& candidate : {planeNormalOf(featureA), Vec3(-planeNormalOf(featureB))}) {
             if (!(candidate.squaredNorm() > 0)) continue;
             const double overlap = overlapAlong(candidate);
             if (overlap < bestOverlap - tolerance) best = candidate, bestOverlap = overlap;
