@@ -32,6 +32,11 @@ namespace gdc::ode {
 /// min(settings.maxContacts, flags & 0xffff).
 GDCONTACT_API void install(const Settings& settings = {});
 
+/// Whether install() routes geoms of these two ODE classes (dBoxClass, dCylinderClass, …; either
+/// order) to gdcontact — the pairs collide() takes. A program calling collide() itself from a near
+/// callback asks this to leave the other pairs to dCollide.
+GDCONTACT_API bool handles(int class1, int class2);
+
 /// dColliderFn-compatible: usable directly, in a near-callback, without install(). Follows ODE's
 /// contact convention (normal from o2 into o1, unit; depth ≥ 0; g1/g2 as received;
 /// side1 = side2 = -1; at most flags & 0xffff contacts at stride `skip`). Handles the pairs

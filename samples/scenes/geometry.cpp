@@ -1,5 +1,7 @@
 #include "geometry.hpp"
 
+#include <ode/ode.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -144,6 +146,65 @@ std::shared_ptr<const Polytope> makePrism(int sides, double radius, double halfH
         points.emplace_back(radius * std::cos(angle), radius * std::sin(angle), halfHeight);
     }
     return std::make_shared<const Polytope>(Polytope::fromPoints(points));
+}
+
+namespace {
+
+void checkRoundSize(double radius, double length, int sides) {
+    if (!(radius > 0.0) || !(length > 0.0) || !std::isfinite(radius) || !std::isfinite(length) || sides < 3)
+        throw InvalidInput("a cylinder or capsule needs a finite radius and length > 0 and at least 3 sides");
+}
+
+/// Points on a capsule's surface: `sides` points on each ring, rings every 90°/⌈sides/4⌉ of latitude
+/// on both end balls, and the two poles.
+std::vector<Vec3> capsuleSurfacePoints(double radius, double length, int sides) {
+    const int rings = std::max(1, (sides + 3) / 4);
+    std::vector<Vec3> points{Vec3(0, 0, 0.5 * length + radius), Vec3(0, 0, -0.5 * length - radius)};
+    for (int ring = 0; ring < rings; ++ring) {
+        const double latitude = 0.5 * kPi * ring / rings;
+        const double rho = radius * std::cos(latitude), height = radius * std::sin(latitude);
+        for (int i = 0; i < sides; ++i) {
+            const double angle = 2.0 * kPi * i / sides;
+            for (double end : {-1.0, 1.0})
+                points.emplace_back(rho * std::cos(angle), rho * std::sin(angle), end * (0.5 * length + height));
+        }
+    }
+    return points;
+}
+
+PlacedPart roundPart(RoundKind kind, std::shared_ptr<const Polytope> tessellation, double radius, double length) {
+    PlacedPart part;
+    part.shape = std::move(tessellation);
+    part.round = kind;
+    part.roundRadius = radius;
+    part.roundLength = length;
+    return part;
+}
+
+}  // namespace
+
+PlacedPart makeCylinderPart(double radius, double length, int sides) {
+    checkRoundSize(radius, length, sides);
+    return roundPart(RoundKind::Cylinder, makePrism(sides, radius, 0.5 * length), radius, length);
+}
+
+PlacedPart makeCapsulePart(double radius, double length, int sides) {
+    checkRoundSize(radius, length, sides);
+    auto hull = std::make_shared<const Polytope>(Polytope::fromPoints(capsuleSurfacePoints(radius, length, sides)));
+    return roundPart(RoundKind::Capsule, std::move(hull), radius, length);
+}
+
+MassProperties massProperties(const PlacedPart& part) {
+    if (part.round == RoundKind::None) return massProperties(*part.shape);
+    // ODE's own formulas at unit density: the mass is the volume, the inertia per kg/m³.
+    dMass mass;
+    if (part.round == RoundKind::Cylinder) dMassSetCylinder(&mass, 1.0, 3, part.roundRadius, part.roundLength);
+    else dMassSetCapsule(&mass, 1.0, 3, part.roundRadius, part.roundLength);
+    MassProperties properties;
+    properties.volume = mass.mass;
+    for (int row = 0; row < 3; ++row)
+        for (int column = 0; column < 3; ++column) properties.inertiaAboutCentroid(row, column) = mass.I[row * 4 + column];
+    return properties;
 }
 
 std::shared_ptr<const Polytope> makeIrregularSlab(Random& random, double radius, double halfHeight) {

@@ -60,13 +60,31 @@ std::shared_ptr<const Polytope> makeBox(const Vec3& halfExtents);
 /// placed by its offset.
 std::pair<std::shared_ptr<const Polytope>, Vec3> centredOnCentroid(const Polytope& shape);
 
+/// ODE's curved geoms a part may be. Their axis is the part's local z (ODE's convention).
+enum class RoundKind { None, Cylinder, Capsule };
+
 /// One convex part of a composite, placed in the composite's frame.
 struct PlacedPart {
     std::shared_ptr<const Polytope> shape;
     Pose offset;
     bool isBox = false;     ///< a box (shape made by makeBox), may become an ODE dBox
     Vec3 halfExtents = Vec3::Zero();
+    /// A cylinder or capsule becomes a real dCylinder / dCapsule with its exact mass; `shape` is
+    /// then only its tessellation, which the geometric penetration measure and the tracking
+    /// baseline (both polytope-only) see in its place.
+    RoundKind round = RoundKind::None;
+    double roundRadius = 0.0;  ///< m
+    double roundLength = 0.0;  ///< m: a cylinder's height, a capsule's segment between its ball centres
 };
+/// A solid cylinder along z, centred: a dCylinder(radius, length). Its tessellation is the
+/// inscribed prism of `sides` sides. Throws InvalidInput unless radius, length > 0 and sides ≥ 3.
+PlacedPart makeCylinderPart(double radius, double length, int sides = 24);
+/// A capsule along z, centred: a dCapsule(radius, length), `length` between the end balls'
+/// centres. Its tessellation puts its vertices on the surface (rings of `sides` points).
+PlacedPart makeCapsulePart(double radius, double length, int sides = 16);
+/// The part's mass properties at unit density in the part's own frame: exact for a cylinder or
+/// capsule (ODE's dMassSetCylinder / dMassSetCapsule), the polytope's otherwise.
+MassProperties massProperties(const PlacedPart& part);
 /// A gear lying flat: a `hubSides`-gon hub prism and `teeth` box teeth around it, all of the same
 /// thickness (so its top and bottom are flat and it can be stacked).
 std::vector<PlacedPart> makeGear(double hubRadius, int hubSides, int teeth, const Vec3& toothHalfExtents,

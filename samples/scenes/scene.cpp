@@ -260,7 +260,7 @@ Body& Scene::addBody(const std::string& name, const std::vector<PlacedPart>& par
     Vec3 centreOfMass = Vec3::Zero();
     std::vector<MassProperties> properties;
     for (const PlacedPart& part : parts) {
-        properties.push_back(massProperties(*part.shape));
+        properties.push_back(massProperties(part));
         const double mass = density * properties.back().volume;
         totalMass += mass;
         centreOfMass += mass * part.offset.apply(properties.back().centroid);
@@ -291,14 +291,7 @@ Body& Scene::addBody(const std::string& name, const std::vector<PlacedPart>& par
     result.name = name;
     result.colour = colour;
     for (const PlacedPart& part : parts) {
-        dGeomID geom;
-        if (part.isBox && !options_.convexBoxes) {
-            geom = dCreateBox(space_, 2 * part.halfExtents.x(), 2 * part.halfExtents.y(), 2 * part.halfExtents.z());
-        } else {
-            std::vector<dReal> points;
-            for (const Vec3& v : part.shape->vertices()) points.insert(points.end(), {v.x(), v.y(), v.z()});
-            geom = gdc::ode::createConvex(space_, points.data(), static_cast<unsigned>(part.shape->vertices().size()));
-        }
+        dGeomID geom = createGeom(part);
         dGeomSetBody(geom, body);
         const Vec3 offset = part.offset.position - centreOfMass;
         dGeomSetOffsetPosition(geom, offset.x(), offset.y(), offset.z());
@@ -313,6 +306,16 @@ Body& Scene::addBody(const std::string& name, const std::vector<PlacedPart>& par
     result.restPose = poseOfBody(body);
     bodies_.push_back(std::move(result));
     return bodies_.back();
+}
+
+dGeomID Scene::createGeom(const PlacedPart& part) {
+    if (part.round == RoundKind::Cylinder) return dCreateCylinder(space_, part.roundRadius, part.roundLength);
+    if (part.round == RoundKind::Capsule) return dCreateCapsule(space_, part.roundRadius, part.roundLength);
+    if (part.isBox && !options_.convexBoxes)
+        return dCreateBox(space_, 2 * part.halfExtents.x(), 2 * part.halfExtents.y(), 2 * part.halfExtents.z());
+    std::vector<dReal> points;
+    for (const Vec3& v : part.shape->vertices()) points.insert(points.end(), {v.x(), v.y(), v.z()});
+    return gdc::ode::createConvex(space_, points.data(), static_cast<unsigned>(part.shape->vertices().size()));
 }
 
 Body& Scene::addBox(const std::string& name, const Vec3& halfExtents, double density, const Pose& pose,
@@ -395,6 +398,11 @@ void Scene::collidePair(dGeomID o1, dGeomID o2) {
     int count = 0;
     switch (method_) {
         case Method::Gdcontact: {
+            // The pairs install() leaves to ODE (docs/ode.md): dCollide, as an installed ODE would.
+            if (!gdc::ode::handles(dGeomGetClass(o1), dGeomGetClass(o2))) {
+                count = dCollide(o1, o2, wanted, out, sizeof(dContactGeom));
+                break;
+            }
             // Explicit settings rather than install()'s global ones: the method is per scene.
             gdc::Settings settings = contactSettings_;
             settings.maxContacts = std::min(wanted, kMaxManifoldPoints);
@@ -674,6 +682,14 @@ void Scene::writeCsv(const std::string& path) const {
 
 std::vector<std::string> sceneNames() { return {"box_drop", "tower", "brick_wall", "composites", "big_world"}; }
 
+std::vector<std::string> extraSceneNames() { return {"barrels"}; }
+
+std::vector<std::string> allSceneNames() {
+    std::vector<std::string> names = sceneNames();
+    for (std::string& name : extraSceneNames()) names.push_back(std::move(name));
+    return names;
+}
+
 std::unique_ptr<Scene> makeScene(const std::string& name, const SceneOptions& options) {
     std::unique_ptr<Scene> scene;
     if (name == "box_drop") scene = makeBoxDrop(options);
@@ -681,7 +697,8 @@ std::unique_ptr<Scene> makeScene(const std::string& name, const SceneOptions& op
     else if (name == "brick_wall") scene = makeBrickWall(options);
     else if (name == "composites") scene = makeComposites(options);
     else if (name == "big_world") scene = makeBigWorld(options);
-    else throw std::invalid_argument("unknown scene '" + name + "' (box_drop, tower, brick_wall, composites, big_world)");
+    else if (name == "barrels") scene = makeBarrels(options);
+    else throw std::invalid_argument("unknown scene '" + name + "' (box_drop, tower, brick_wall, composites, big_world, barrels)");
     scene->reset();
     return scene;
 }

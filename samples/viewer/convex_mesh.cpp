@@ -19,6 +19,80 @@ ConvexMesh ConvexMesh::box(const Vec3& h) {
                                     {0, 2, 3, 1}, {4, 5, 7, 6}});  // -z, +z
 }
 
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// Appends a ring of `sides` vertices of radius `rho` at height `z`; returns its first index.
+int addRing(std::vector<Vec3>& vertices, double rho, double z, int sides) {
+    const int first = int(vertices.size());
+    for (int i = 0; i < sides; ++i) {
+        const double angle = 2.0 * kPi * i / sides;
+        vertices.emplace_back(rho * std::cos(angle), rho * std::sin(angle), z);
+    }
+    return first;
+}
+
+/// The quads joining ring `lower` to ring `upper` above it (both of `sides` vertices, the same
+/// azimuths), counter-clockwise seen from outside.
+void addBand(std::vector<std::vector<int>>& loops, int lower, int upper, int sides) {
+    for (int i = 0; i < sides; ++i) {
+        const int next = (i + 1) % sides;
+        loops.push_back({lower + i, lower + next, upper + next, upper + i});
+    }
+}
+
+/// The triangles joining `pole` to `ring`: `upward` when the pole lies above the ring.
+void addFan(std::vector<std::vector<int>>& loops, int pole, int ring, int sides, bool upward) {
+    for (int i = 0; i < sides; ++i) {
+        const int next = (i + 1) % sides;
+        if (upward) loops.push_back({ring + i, ring + next, pole});
+        else loops.push_back({ring + next, ring + i, pole});
+    }
+}
+
+}  // namespace
+
+ConvexMesh ConvexMesh::cylinder(double radius, double length, int sides) {
+    if (!std::isfinite(radius) || !std::isfinite(length) || !(radius > 0.0) || !(length > 0.0) || sides < 3)
+        throw InvalidInput("cylinder radius and length must be finite and positive, with at least 3 sides");
+    std::vector<Vec3> vertices;
+    const int bottom = addRing(vertices, radius, -0.5 * length, sides);
+    const int top = addRing(vertices, radius, 0.5 * length, sides);
+    std::vector<std::vector<int>> loops;
+    addBand(loops, bottom, top, sides);
+    std::vector<int> bottomCap, topCap;
+    for (int i = 0; i < sides; ++i) {
+        bottomCap.push_back(bottom + sides - 1 - i);  // clockwise from above: counter-clockwise from below
+        topCap.push_back(top + i);
+    }
+    loops.push_back(std::move(bottomCap));
+    loops.push_back(std::move(topCap));
+    return fromFaces(std::move(vertices), loops);
+}
+
+ConvexMesh ConvexMesh::capsule(double radius, double length, int sides) {
+    if (!std::isfinite(radius) || !std::isfinite(length) || !(radius > 0.0) || !(length >= 0.0) || sides < 4)
+        throw InvalidInput("capsule radius must be finite and positive, its length finite and not negative, "
+                           "with at least 4 sides");
+    // Rings from the bottom pole's neighbour up to the top pole's, every 90°/rings of latitude on
+    // each end ball; a zero length shares the equator ring instead of a zero-height band.
+    const int rings = std::max(2, sides / 4);
+    std::vector<Vec3> vertices{Vec3(0, 0, -0.5 * length - radius), Vec3(0, 0, 0.5 * length + radius)};
+    std::vector<int> ringStarts;
+    for (int k = -rings + 1; k <= rings - 1; ++k) {
+        const double latitude = 0.5 * kPi * k / rings;
+        const double centre = (k < 0 ? -0.5 : 0.5) * length;
+        ringStarts.push_back(addRing(vertices, radius * std::cos(latitude), centre + radius * std::sin(latitude), sides));
+        if (k == 0 && length > 0.0) ringStarts.insert(ringStarts.end() - 1, addRing(vertices, radius, -0.5 * length, sides));
+    }
+    std::vector<std::vector<int>> loops;
+    addFan(loops, 0, ringStarts.front(), sides, false);
+    for (std::size_t r = 0; r + 1 < ringStarts.size(); ++r) addBand(loops, ringStarts[r], ringStarts[r + 1], sides);
+    addFan(loops, 1, ringStarts.back(), sides, true);
+    return fromFaces(std::move(vertices), loops);
+}
+
 ConvexMesh ConvexMesh::fromPolytope(const Polytope& polytope) {
     ConvexMesh mesh;
     mesh.vertices = polytope.vertices();

@@ -26,6 +26,15 @@ struct ConvexMesh {
     /// A box centred at the origin. Throws InvalidInput unless every half extent is finite and > 0.
     static ConvexMesh box(const Vec3& halfExtents);
     static ConvexMesh fromPolytope(const Polytope& polytope);
+    /// A cylinder along z, centred, `length` tall: two `sides`-gon caps (vertices on the circle)
+    /// and a band of quads. For drawing and picking only; the physics uses the exact geom. Throws
+    /// InvalidInput unless radius and length are finite and > 0 and sides ≥ 3.
+    static ConvexMesh cylinder(double radius, double length, int sides = 32);
+    /// A capsule along z, centred: `length` between its end balls' centres (may be 0: a ball),
+    /// hemispheres of `sides`-point rings with vertices on the surface, joined by a band of
+    /// quads. For drawing and picking only. Throws InvalidInput unless radius > 0, length ≥ 0
+    /// (both finite) and sides ≥ 4.
+    static ConvexMesh capsule(double radius, double length, int sides = 24);
     /// From vertices and CCW face loops; planes and edges are derived. Throws InvalidInput for a
     /// face with fewer than three vertices or an index out of range.
     static ConvexMesh fromFaces(std::vector<Vec3> vertices, const std::vector<std::vector<int>>& loops);

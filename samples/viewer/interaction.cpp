@@ -2,6 +2,8 @@
 
 #include <geometry.hpp>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -40,13 +42,15 @@ const char* spawnKindName(SpawnKind kind) {
         case SpawnKind::Rock: return "rock";
         case SpawnKind::Composite: return "composite";
         case SpawnKind::Obj: return "OBJ file";
+        case SpawnKind::Cylinder: return "cylinder";
+        case SpawnKind::Capsule: return "capsule";
     }
     return "?";
 }
 
 SpawnShape centredShape(std::string name, std::vector<scenes::PlacedPart> parts) {
     for (auto& part : parts) {
-        if (part.isBox) continue;  // makeBox is centred already
+        if (part.isBox || part.round != scenes::RoundKind::None) continue;  // centred already
         auto [centred, centroid] = scenes::centredOnCentroid(*part.shape);
         part.shape = centred;
         part.offset.position += part.offset.rotation * centroid;
@@ -54,7 +58,7 @@ SpawnShape centredShape(std::string name, std::vector<scenes::PlacedPart> parts)
     double mass = 0.0;
     Vec3 centre = Vec3::Zero();
     for (const auto& part : parts) {
-        const scenes::MassProperties properties = scenes::massProperties(*part.shape);
+        const scenes::MassProperties properties = scenes::massProperties(part);
         mass += properties.volume;
         centre += properties.volume * part.offset.apply(properties.centroid);
     }
@@ -92,6 +96,17 @@ SpawnShape makeSpawnComposite(double radius) {
     const double s = radius / 1.2;
     return centredShape("composite", {boxPart(Vec3(0.9 * s, 0.25 * s, 0.2 * s), Vec3(0, 0, 0.75 * s)),
                                       boxPart(Vec3(0.2 * s, 0.2 * s, 0.55 * s), Vec3(0, 0, 0))});
+}
+
+SpawnShape makeSpawnCylinder(double radius) {
+    return centredShape("cylinder", {scenes::makeCylinderPart(0.6 * radius, 1.6 * radius)});
+}
+
+SpawnShape makeSpawnCapsule(double radius) {
+    scenes::PlacedPart part = scenes::makeCapsulePart(0.4 * radius, 1.2 * radius);
+    // ODE's capsule axis is its z; turned onto x, so a dropped capsule lands lying on its side.
+    part.offset.rotation = Eigen::AngleAxisd(0.5 * scenes::kPi, Vec3::UnitY()).toRotationMatrix();
+    return centredShape("capsule", {part});
 }
 
 SpawnShape spawnShapeFromObj(const scenes::ObjShape& obj, std::string name) {
@@ -236,6 +251,8 @@ SpawnShape Interaction::nextShape(const scenes::Scene& scene) {
         case SpawnKind::Box: return makeSpawnBox(radius);
         case SpawnKind::Rock: return makeSpawnRock(radius, spawned_);
         case SpawnKind::Composite: return makeSpawnComposite(radius);
+        case SpawnKind::Cylinder: return makeSpawnCylinder(radius);
+        case SpawnKind::Capsule: return makeSpawnCapsule(radius);
         case SpawnKind::Obj: break;
     }
     return obj_ ? *obj_ : makeSpawnBox(radius);  // no file loaded yet: a box rather than nothing

@@ -23,9 +23,12 @@
 
 namespace gdc::viewer {
 
-enum class SpawnKind { Box, Rock, Composite, Obj };
-inline constexpr SpawnKind kSpawnKinds[] = {SpawnKind::Box, SpawnKind::Rock, SpawnKind::Composite, SpawnKind::Obj};
-const char* spawnKindName(SpawnKind kind);  // "box", "rock", "composite", "OBJ file"
+enum class SpawnKind { Box, Rock, Composite, Obj, Cylinder, Capsule };
+/// In the panel's and the number keys' order (1 box … 6 capsule): the kinds added later come last,
+/// so the older keys keep their meaning.
+inline constexpr SpawnKind kSpawnKinds[] = {SpawnKind::Box, SpawnKind::Rock,     SpawnKind::Composite,
+                                            SpawnKind::Obj, SpawnKind::Cylinder, SpawnKind::Capsule};
+const char* spawnKindName(SpawnKind kind);  // "box", "rock", "composite", "OBJ file", "cylinder", "capsule"
 
 /// A body ready to add: convex parts in a frame whose origin is their common centre of mass
 /// (uniform density), so the body's centre of mass lands where the frame is put.
@@ -34,7 +37,9 @@ struct SpawnShape {
     std::vector<scenes::PlacedPart> parts;
     double radius = 0.0;  ///< bounding radius about the origin (m)
 };
-/// Recentres `parts` on their common centre of mass and measures their bounding radius.
+/// Recentres `parts` on their common centre of mass and measures their bounding radius (cylinder
+/// and capsule parts are centred on their own centre already, and measured by their tessellation,
+/// whose vertices lie on their surface).
 SpawnShape centredShape(std::string name, std::vector<scenes::PlacedPart> parts);
 /// A box whose corners lie `radius` from its centre (proportions 1 : 0.8 : 0.6).
 SpawnShape makeSpawnBox(double radius);
@@ -43,6 +48,12 @@ SpawnShape makeSpawnBox(double radius);
 SpawnShape makeSpawnRock(double radius, std::uint64_t seed);
 /// A composite of two boxes, a T (one body, two convex parts), about `radius` across.
 SpawnShape makeSpawnComposite(double radius);
+/// A standing cylinder (a real dCylinder, axis vertical) whose rim lies `radius` from its centre:
+/// radius 0.6 × `radius`, height 1.6 × `radius`.
+SpawnShape makeSpawnCylinder(double radius);
+/// A lying capsule (a real dCapsule, axis along the body's x) reaching `radius` from its centre:
+/// ball radius 0.4 × `radius`, 1.2 × `radius` between the ball centres.
+SpawnShape makeSpawnCapsule(double radius);
 SpawnShape spawnShapeFromObj(const scenes::ObjShape& obj, std::string name);
 
 /// Where a body of bounding radius `radius` is dropped for a cursor ray: over the point where the

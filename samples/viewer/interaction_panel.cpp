@@ -48,7 +48,7 @@ void Interaction::panelSection() {
     ImGui::Checkbox("wireframe", &debug.wireframe);
     ImGui::SameLine();
     ImGui::Checkbox("bounds", &debug.bounds);
-    ImGui::TextDisabled("d drop at cursor  t throw  1-4 kind");
+    ImGui::TextDisabled("d drop at cursor  t throw  1-6 kind");
     ImGui::TextDisabled("shift+right-drag: throw by flick");
     ImGui::TextDisabled("i inspector  w wireframe  b bounds");
 }

@@ -21,7 +21,7 @@ void usage(std::FILE* out) {
     std::fprintf(out,
                  "usage: viewer [options]\n"
                  "  --scene NAME        scene to open (");
-    const auto names = gdc::scenes::sceneNames();
+    const auto names = gdc::scenes::allSceneNames();
     for (std::size_t i = 0; i < names.size(); ++i) std::fprintf(out, "%s%s", i ? ", " : "", names[i].c_str());
     std::fprintf(out,
                  ")\n"
@@ -50,8 +50,9 @@ void usage(std::FILE* out) {
                  "shift+right-drag throws by flick; left/right-drag elsewhere orbits, middle-drag pans,\n"
                  "wheel zooms. keys: space pause, s step, r reset, p push, c contacts, x contacts through\n"
                  "bodies, v side by side, g dBox/dConvex, f fit view, h hide panel, esc quit;\n"
-                 "d drop at the cursor, t throw from the camera, 1-4 box / rock / composite / OBJ,\n"
-                 "i inspector, w wireframe, b bounding boxes (side by side, added bodies go to both worlds)\n");
+                 "d drop at the cursor, t throw from the camera, 1-6 box / rock / composite / OBJ / cylinder /\n"
+                 "capsule, i inspector, w wireframe, b bounding boxes (side by side, added bodies go to both\n"
+                 "worlds)\n");
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "scene_shapes.hpp"
 
+#include <cmath>
 #include <limits>
 
 namespace gdc::viewer {
@@ -12,6 +13,20 @@ Pose poseFromOde(const dReal* position, const dReal* rotation) {
     }
     return pose;
 }
+
+namespace {
+
+/// The drawn tessellation of a dCylinder or dCapsule; null for a size it cannot draw (a zero
+/// radius, a zero-length cylinder), which is then skipped like a class the viewer does not draw.
+std::shared_ptr<const ConvexMesh> roundMesh(int geomClass, double radius, double length) {
+    const bool drawable = radius > 0.0 && std::isfinite(radius) && std::isfinite(length) &&
+                          (geomClass == dCapsuleClass ? length >= 0.0 : length > 0.0);
+    if (!drawable) return nullptr;
+    return std::make_shared<const ConvexMesh>(geomClass == dCylinderClass ? ConvexMesh::cylinder(radius, length)
+                                                                         : ConvexMesh::capsule(radius, length));
+}
+
+}  // namespace
 
 void SceneShapes::clear() {
     cache_.clear();
@@ -84,8 +99,23 @@ std::shared_ptr<const ConvexMesh> SceneShapes::meshOf(dGeomID geom) {
         dVector3 lengths;
         dGeomBoxGetLengths(geom, lengths);
         const Vec3 size(lengths[0], lengths[1], lengths[2]);
-        if (!cached.mesh || cached.source != nullptr || cached.boxLengths != size) {
-            cached = Cached{size, nullptr, std::make_shared<const ConvexMesh>(ConvexMesh::box(0.5 * size))};
+        if (!cached.mesh || cached.geomClass != type || cached.size != size) {
+            cached = Cached{size, type, nullptr, std::make_shared<const ConvexMesh>(ConvexMesh::box(0.5 * size))};
+        }
+        return cached.mesh;
+    }
+    if (type == dCylinderClass || type == dCapsuleClass) {
+        dReal radius, length;
+        if (type == dCylinderClass) dGeomCylinderGetParams(geom, &radius, &length);
+        else dGeomCapsuleGetParams(geom, &radius, &length);
+        const Vec3 size(radius, length, 0.0);
+        if (!cached.mesh || cached.geomClass != type || cached.size != size) {
+            auto mesh = roundMesh(type, radius, length);
+            if (!mesh) {
+                cache_.erase(geom);
+                return nullptr;
+            }
+            cached = Cached{size, type, nullptr, std::move(mesh)};
         }
         return cached.mesh;
     }
@@ -94,7 +124,7 @@ std::shared_ptr<const ConvexMesh> SceneShapes::meshOf(dGeomID geom) {
         if (polytope == nullptr) return nullptr;  // a dConvex nobody told us the shape of
         if (!cached.mesh || cached.source != polytope) {
             auto mesh = std::make_shared<const ConvexMesh>(ConvexMesh::fromPolytope(*polytope));
-            cached = Cached{Vec3::Zero(), std::move(polytope), std::move(mesh)};
+            cached = Cached{Vec3::Zero(), type, std::move(polytope), std::move(mesh)};
         }
         return cached.mesh;
     }

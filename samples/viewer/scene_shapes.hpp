@@ -1,5 +1,5 @@
 // Everything drawable and pickable in an ODE space: boxes, convex hulls (through the gdcontact
-// adapter), planes, geoms inside a dGeomTransform and geoms with a body offset, in nested spaces.
+// adapter), cylinders and capsules (drawn and picked as fine tessellations), planes, geoms inside a dGeomTransform and geoms with a body offset, in nested spaces.
 #pragma once
 
 #include "convex_mesh.hpp"
@@ -40,7 +40,7 @@ public:
 
     /// Re-read every geom of `space` (recursively): poses always, meshes only for geoms not seen
     /// before or whose dimensions changed. Geoms of classes the viewer cannot draw (spheres,
-    /// capsules, trimeshes...) are counted in skipped().
+    /// trimeshes...) are counted in skipped().
     void update(dSpaceID space);
     /// Forget all cached meshes (after the scene was rebuilt: ODE may reuse geom addresses).
     void clear();
@@ -56,7 +56,8 @@ public:
 
 private:
     struct Cached {
-        Vec3 boxLengths = Vec3::Zero();  // for boxes: rebuild when the lengths change
+        Vec3 size = Vec3::Zero();  // boxes: the lengths; cylinders, capsules: radius, length, 0
+        int geomClass = -1;        // rebuild when the class or the size changes (ODE reuses addresses)
         std::shared_ptr<const Polytope> source;  // for convex geoms: the polytope it was built from
         std::shared_ptr<const ConvexMesh> mesh;
     };

@@ -593,7 +593,7 @@ void Viewer::drawPanel() {
     ImGui::PushItemWidth(-kLabelColumn);  // negative: the widget leaves this much room for its label
 
     // Scene choice and what is compared
-    const auto names = scenes::sceneNames();
+    const auto names = scenes::allSceneNames();
     if (ImGui::BeginCombo("scene", options_.scene.c_str())) {
         for (const auto& name : names)
             if (ImGui::Selectable(name.c_str(), name == options_.scene)) {
@@ -958,7 +958,7 @@ void Viewer::onKey(GLFWwindow* window, int key, int, int action, int) {
         case GLFW_KEY_F: v.fitCamera(); break;
         case GLFW_KEY_D: v.dropAt(v.lastX_, v.lastY_); break;
         case GLFW_KEY_T: v.throwAt(v.lastX_, v.lastY_, v.interaction_.throwSpeed); break;
-        case GLFW_KEY_1: case GLFW_KEY_2: case GLFW_KEY_3: case GLFW_KEY_4:
+        case GLFW_KEY_1: case GLFW_KEY_2: case GLFW_KEY_3: case GLFW_KEY_4: case GLFW_KEY_5: case GLFW_KEY_6:
             v.interaction_.kind = kSpawnKinds[key - GLFW_KEY_1];
             break;
         case GLFW_KEY_I: v.interaction_.inspector = !v.interaction_.inspector; break;

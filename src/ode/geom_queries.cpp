@@ -6,6 +6,7 @@
 #include "convex_registry.hpp"
 #include "geom_reading.hpp"
 #include "pair_cache_table.hpp"
+#include "round_geoms.hpp"
 
 namespace gdc::ode {
 namespace {
@@ -39,6 +40,8 @@ Pose poseOf(dGeomID geom) {
         throw InvalidInput("gdc::ode::poseOf: a plane or space has no pose");
     return readPose(geom);
 }
+
+bool handles(int class1, int class2) { return detail::isGdcontactPair(class1, class2); }
 
 std::size_t liveConvexCount() { return detail::registeredConvexCount(); }
 

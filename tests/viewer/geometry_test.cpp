@@ -11,6 +11,7 @@
 #include <catch2/catch.hpp>
 #include <ode/ode.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -298,6 +299,67 @@ TEST_CASE("a dConvex geom is drawn from the polytope the lookup gives") {
     const auto hit = shapes.pick(Ray{Vec3(0.2, 0.1, 5), Vec3(0, 0, -1)});
     REQUIRE(hit);
     CHECK(hit->point.z() == Approx(1.5));
+    dSpaceDestroy(space);
+}
+
+TEST_CASE("cylinder and capsule meshes are closed, convex, outward, with their vertices on the surface") {
+    const double radius = 0.3, length = 0.8;
+    const ConvexMesh cylinder = ConvexMesh::cylinder(radius, length, 16);
+    const ConvexMesh capsule = ConvexMesh::capsule(radius, length, 16);
+    const ConvexMesh ball = ConvexMesh::capsule(radius, 0.0, 16);  // a zero-length capsule: a sphere
+    CHECK(cylinder.faces.size() == 16 + 2);  // the band and two 16-gon caps
+    for (const ConvexMesh* mesh : {&cylinder, &capsule, &ball}) {
+        // Euler: V − E + F = 2 for a closed surface; every vertex inside every face's half-space.
+        CHECK(int(mesh->vertices.size()) - int(mesh->edges.size()) + int(mesh->faces.size()) == 2);
+        for (const auto& face : mesh->faces)
+            for (const Vec3& v : mesh->vertices) CHECK(face.normal.dot(v) <= face.offset + 1e-12);
+    }
+    for (const Vec3& v : cylinder.vertices) {
+        CHECK(v.head<2>().norm() == Approx(radius));
+        CHECK(std::abs(v.z()) == Approx(0.5 * length));
+    }
+    for (const Vec3& v : capsule.vertices) {  // `radius` from the nearest point of its segment
+        const Vec3 axisPoint(0, 0, std::clamp(v.z(), -0.5 * length, 0.5 * length));
+        CHECK((v - axisPoint).norm() == Approx(radius));
+    }
+    // Straight down the axis: the cap at h/2, the pole at L/2 + r.
+    const Ray down{Vec3(0, 0, 5), Vec3(0, 0, -1)};
+    CHECK(*intersect(down, cylinder) == Approx(5.0 - 0.5 * length));
+    CHECK(*intersect(down, capsule) == Approx(5.0 - 0.5 * length - radius));
+    CHECK_THROWS_AS(ConvexMesh::cylinder(0.0, 1.0), InvalidInput);
+    CHECK_THROWS_AS(ConvexMesh::capsule(0.3, -1.0), InvalidInput);
+}
+
+TEST_CASE("scene shapes draw dCylinder and dCapsule geoms and re-read them when resized") {
+    needOde();
+    dSpaceID space = dSimpleSpaceCreate(nullptr);
+    dGeomID cylinder = dCreateCylinder(space, 0.5, 2.0);
+    dGeomSetPosition(cylinder, 0, 0, 1);
+    dGeomID capsule = dCreateCapsule(space, 0.25, 1.0);
+    dGeomSetPosition(capsule, 3, 0, 1);
+    dMatrix3 r;
+    toOde(rotation(M_PI / 2, Vec3::UnitX()), r);  // lying: its axis along y
+    dGeomSetRotation(capsule, r);
+    dCreateSphere(space, 0.5);  // still not drawn
+
+    SceneShapes shapes;
+    shapes.update(space);
+    CHECK(shapes.skipped() == 1);
+    REQUIRE(shapes.shapes().size() == 2);
+    auto hit = shapes.pick(Ray{Vec3(0, 0, 10), Vec3(0, 0, -1)});
+    REQUIRE(hit);
+    CHECK(shapes.shapes()[hit->shape].geom == cylinder);
+    CHECK(hit->point.z() == Approx(2.0));  // the top cap
+    hit = shapes.pick(Ray{Vec3(3, 0.3, 10), Vec3(0, 0, -1)});  // onto the lying capsule's side
+    REQUIRE(hit);
+    CHECK(shapes.shapes()[hit->shape].geom == capsule);
+    CHECK(hit->point.z() == Approx(1.25).margin(0.25 * (1.0 - std::cos(M_PI / 24))));  // within the sagitta
+
+    dGeomCylinderSetParams(cylinder, 0.5, 4.0);
+    shapes.update(space);
+    hit = shapes.pick(Ray{Vec3(0, 0, 10), Vec3(0, 0, -1)});
+    REQUIRE(hit);
+    CHECK(hit->point.z() == Approx(3.0));
     dSpaceDestroy(space);
 }
 

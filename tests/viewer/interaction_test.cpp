@@ -367,6 +367,31 @@ TEST_CASE("an OBJ composite dropped into a scene is one body of the file's parts
     CHECK(statistics(viewer.capture()).colouredPixels > 0);
 }
 
+TEST_CASE("a cylinder stands and a capsule lies, each a real curved part reaching as far as asked") {
+    const SpawnShape cylinder = makeSpawnCylinder(0.5);
+    REQUIRE(cylinder.parts.size() == 1);
+    const scenes::PlacedPart& can = cylinder.parts[0];
+    CHECK(can.round == scenes::RoundKind::Cylinder);
+    CHECK(can.roundRadius == Approx(0.3));
+    CHECK(can.roundLength == Approx(0.8));
+    CHECK(can.offset.position.norm() < 1e-12);
+    CHECK((can.offset.rotation * Vec3::UnitZ() - Vec3::UnitZ()).norm() < 1e-12);  // standing
+    CHECK(cylinder.radius == Approx(0.5).epsilon(1e-12));  // the rim, which the prism's vertices lie on
+
+    const SpawnShape capsule = makeSpawnCapsule(0.5);
+    REQUIRE(capsule.parts.size() == 1);
+    const scenes::PlacedPart& pill = capsule.parts[0];
+    CHECK(pill.round == scenes::RoundKind::Capsule);
+    CHECK(pill.roundRadius == Approx(0.2));
+    CHECK(pill.roundLength == Approx(0.6));
+    CHECK(pill.offset.position.norm() < 1e-12);
+    CHECK(std::abs((pill.offset.rotation * Vec3::UnitZ()).z()) < 1e-12);  // lying
+    CHECK(capsule.radius == Approx(0.5).epsilon(1e-12));  // the poles
+    // The exact mass properties, not the tessellation's: π r² h and π r² (L + 4r/3).
+    CHECK(scenes::massProperties(can).volume == Approx(scenes::kPi * 0.09 * 0.8).epsilon(1e-12));
+    CHECK(scenes::massProperties(pill).volume == Approx(scenes::kPi * 0.04 * (0.6 + 4.0 * 0.2 / 3.0)).epsilon(1e-12));
+}
+
 // ---- side by side -----------------------------------------------------------------------------
 
 namespace {
@@ -565,4 +590,76 @@ TEST_CASE("the help names one key for each action: t throws, x draws contacts th
     CHECK_THAT(text, Catch::Contains("t throw from the camera") && Catch::Contains("x contacts through") &&
                          Catch::Contains("d drop at the cursor") && Catch::Contains("v side by side"));
     CHECK_THAT(text, !Catch::Contains("t contacts through"));
+}
+
+namespace {
+
+/// The lowest height of a dCylinder or dCapsule geom's exact surface (its axis is the geom's z).
+double lowestPointOfRound(dGeomID geom) {
+    const dReal* r = dGeomGetRotation(geom);
+    const double axisZ = std::min(1.0, std::abs(double(r[10])));  // the z of the geom's z axis
+    const double height = dGeomGetPosition(geom)[2];
+    dReal radius, length;
+    if (dGeomGetClass(geom) == dCylinderClass) {
+        dGeomCylinderGetParams(geom, &radius, &length);
+        return height - 0.5 * length * axisZ - radius * std::sqrt(1.0 - axisZ * axisZ);  // the rim's lowest point
+    }
+    dGeomCapsuleGetParams(geom, &radius, &length);
+    return height - 0.5 * length * axisZ - radius;
+}
+
+}  // namespace
+
+TEST_CASE("side by side: a cylinder and a capsule are ODE's own geoms in both worlds, drawn, and rest on the ground") {
+    const std::string problem = test::ensureXServer();
+    if (!problem.empty()) return test::reportSkipped(problem);
+    OdeSession ode;
+    const std::pair<SpawnKind, int> kinds[] = {{SpawnKind::Cylinder, dCylinderClass}, {SpawnKind::Capsule, dCapsuleClass}};
+    for (const auto& [kind, geomClass] : kinds) {
+        SECTION(spawnKindName(kind)) {
+            ViewerOptions options = testOptions("box_drop");
+            options.width = 640;
+            options.sideBySide = true;  // gdcontact left, ODE's native colliders right
+            Viewer viewer(options);
+            viewer.simulate(0.1);
+            const std::size_t count = viewer.scene(0).bodies().size();
+            const OrbitCamera& camera = viewer.camera();
+            const Vec3 right = (camera.target() - camera.eye()).cross(Vec3::UnitZ()).normalized();
+            Vec3 ground = camera.target() + 0.8 * right;
+            ground.z() = 0.0;
+            viewer.interaction().kind = kind;
+            const Eigen::Vector2d pixel = pixelInView(viewer, 0, ground);
+            REQUIRE(viewer.dropAt(pixel.x(), pixel.y()) != nullptr);
+            viewer.simulate(2.0);
+
+            for (int view : {0, 1}) {
+                INFO((view == 0 ? "gdcontact" : "ODE's colliders"));
+                REQUIRE(viewer.scene(view).bodies().size() == count + 1);
+                const scenes::Body& body = viewer.scene(view).bodies().back();
+                REQUIRE(body.parts.size() == 1);
+                const dGeomID geom = body.parts[0].geom;
+                CHECK(dGeomGetClass(geom) == geomClass);  // the exact geom, not a hull
+                // The density times the exact volume: π r² h, π r² (L + 4r/3).
+                dReal radius, length;
+                if (geomClass == dCylinderClass) dGeomCylinderGetParams(geom, &radius, &length);
+                else dGeomCapsuleGetParams(geom, &radius, &length);
+                const double ends = geomClass == dCylinderClass ? 0.0 : 4.0 * radius / 3.0;
+                dMass mass;
+                dBodyGetMass(body.body, &mass);
+                CHECK(mass.mass == Approx(1000.0 * scenes::kPi * radius * radius * (length + ends)).epsilon(1e-6));
+                // Drawn: the view's shapes have a mesh for it.
+                bool drawn = false;
+                for (const DrawShape& shape : viewer.shapes(view).shapes()) drawn |= shape.geom == geom && !shape.isPlane();
+                CHECK(drawn);
+                // At rest on the ground, not sunk into it: its exact lowest point within a
+                // millimetre of z = 0 (what ERP leaves of a resting overlap is far less).
+                const double lowest = lowestPointOfRound(geom);
+                INFO("lowest point " << lowest << " m, speed " << velocityOf(body.body).norm() << " m/s");
+                CHECK(lowest > -1e-3);
+                CHECK(lowest < 1e-3);
+                CHECK(velocityOf(body.body).norm() < 0.05);
+                CHECK(viewer.scene(view).lastContacts().size() > 0);
+            }
+        }
+    }
 }

@@ -113,7 +113,7 @@ TEST_CASE("every scene renders a frame that shows its bodies") {
     const std::string problem = test::ensureXServer();
     if (!problem.empty()) return test::reportSkipped(problem);
     OdeSession ode;
-    for (const std::string& name : scenes::sceneNames()) {
+    for (const std::string& name : scenes::allSceneNames()) {
         SECTION(name) {
             Viewer viewer(testOptions(name));
             for (int frame = 0; frame < 10; ++frame) {
@@ -195,7 +195,7 @@ TEST_CASE("ctrl-click removes the brick under the cursor and nothing else") {
 TEST_CASE("the headless command writes a screenshot of each scene") {
     const std::string problem = test::ensureXServer();
     if (!problem.empty()) return test::reportSkipped(problem);
-    for (const std::string& name : scenes::sceneNames()) {
+    for (const std::string& name : scenes::allSceneNames()) {
         SECTION(name) {
             const std::string path = std::string(GDCONTACT_VIEWER_TEST_OUTPUT) + "/viewer_" + name + ".png";
             std::remove(path.c_str());
@@ -320,7 +320,7 @@ TEST_CASE("the geom toggle rebuilds every world with ODE dBox or dConvex boxes")
     const std::string problem = test::ensureXServer();
     if (!problem.empty()) return test::reportSkipped(problem);
     OdeSession ode;
-    for (const std::string& name : scenes::sceneNames()) {
+    for (const std::string& name : scenes::allSceneNames()) {
         SECTION(name) {
             ViewerOptions options = testOptions(name);
             options.sideBySide = true;
