@@ -47,6 +47,16 @@ struct Body {
         }
     }
 
+    // A sphere is a point, a capsule a segment, grown by its radius (the ray cast's margin): the
+    // core's support, and the radius it is grown by (0 for the other kinds: their own support).
+    double margin() const { return kind == ShapeKind::Sphere || kind == ShapeKind::Capsule ? round.radius : 0.0; }
+    Vec3 coreSupport(const Vec3& direction) const {
+        if (kind == ShapeKind::Sphere) return toA.position;
+        if (kind == ShapeKind::Capsule)
+            return toA.apply(Vec3(0, 0, endToward(toA.rotation.transpose() * direction, round.halfLength)));
+        return support(direction);
+    }
+
     Vec3 support(const Vec3& direction) const {
         const Vec3 local = toA.rotation.transpose() * direction;
         switch (kind) {
@@ -166,18 +176,20 @@ void collideRoundInto(const Shape& shapeA, const Pose& poseA, const Shape& shape
         // Stage 1: the growth distance, the exit of the ray along p_B − p_A through C. A curved
         // surface is met only in the limit: each support adds a point, and the cast stops within
         // its tolerance of the surface.
+        // A sphere's or a capsule's core and radius: the cast on the cores, grown by the radii.
         bool found = false;
+        const double margin = a.margin() + b.margin();
         if (distance > 1e-12 * size) {
             const Vec3 w = offset / distance;
             SupportLog log;
             auto support = [&](const Vec3& d) {
-                const Vec3 onA = a.support(d), onB = b.support(-d);
+                const Vec3 onA = a.coreSupport(d), onB = b.coreSupport(-d);
                 const int id = log.add(onA, onB);
                 return SupportPoint{(onA - a.centre) - (onB - b.centre), id, id};
             };
-            const double start = w.dot(support(w).point) + 0.5 * size;
+            const double start = w.dot(support(w).point) + margin + 0.5 * size;
             const RayCastResult cast = gjkRayCast(support, start * w, -w, settings.rayCastTolerance * size,
-                                                  settings.maxRayCastIterations);
+                                                  settings.maxRayCastIterations, margin);
             if (cast.hit && start - cast.lambda > 0 && cast.normal.squaredNorm() > 0 && cast.normal.allFinite())
                 normal = cast.normal.normalized(), found = true;
         }
@@ -215,20 +227,28 @@ void collideRoundInto(const Shape& shapeA, const Pose& poseA, const Shape& shape
     if (!onPlane && deepest < normalOverlap - 1e-7 * size) {
         SupportLog log;
         auto support = [&](const Vec3& d) {
-            const Vec3 onA = a.support(d), onB = b.support(-d);
+            const Vec3 onA = a.coreSupport(d), onB = b.coreSupport(-d);
             const int id = log.add(onA, onB);
             return SupportPoint{onA - onB, id, id};
         };
-        const double start = normal.dot(support(normal).point) + 0.5 * size;
-        const RayCastResult cast =
-            gjkRayCast(support, start * normal, -normal, settings.rayCastTolerance * size, settings.maxRayCastIterations);
+        const double margin = a.margin() + b.margin();
+        const double start = normal.dot(support(normal).point) + margin + 0.5 * size;
+        const RayCastResult cast = gjkRayCast(support, start * normal, -normal, settings.rayCastTolerance * size,
+                                              settings.maxRayCastIterations, margin);
         const double depth = start - cast.lambda;
         if (cast.hit && cast.simplexCount > 0 && depth >= minimumDepth - tolerance && depth > deepest + tolerance) {
+            // The cores' witnesses, each grown by its radius along the cast's normal.
             Vec3 onA = Vec3::Zero(), onB = Vec3::Zero();
             for (int i = 0; i < cast.simplexCount; ++i) {
                 onA += cast.weights[i] * log.onA[cast.simplex[i].vertexA];
                 onB += cast.weights[i] * log.onB[cast.simplex[i].vertexB];
             }
+            // Grown along the hit's direction from the cores' closest point (the final v), so that
+            // the two witnesses differ by the hit itself.
+            const Vec3 fromCores = depth * normal - (onA - onB);
+            const Vec3 outward = fromCores.squaredNorm() > 0 ? Vec3(fromCores.normalized()) : normal;
+            onA += a.margin() * outward;
+            onB -= b.margin() * outward;
             // The point on B is B's witness itself (a convex combination of B's supports: inside
             // B); the one on A is it moved by the depth along n, A's witness within the cast's
             // tolerance.

@@ -62,33 +62,40 @@ bool supportsAsFacet(const Support& support, const std::array<SupportPoint, 4>& 
 /// GJK ray cast against a convex set given by its support function `support(direction)` →
 /// SupportPoint. Stores the support points themselves (not x − p), so that moving the ray's
 /// current point x never leaves a stale simplex. `tolerance` is a length.
+/// With a `margin` m > 0 the set cast against is the support's set grown by a ball of radius m (a
+/// sphere is a point so grown, a capsule a segment): the ray stops where it comes within m of the
+/// support's set, and `normal` is the direction from that set's closest point (van den Bergen's
+/// cast with margins). A point or a segment has finitely many supports where its grown set has a
+/// continuum, so the cast ends in a few steps where it would only converge in the limit. With
+/// m = 0 every step is the plain cast's, operation for operation.
 template <class Support>
 RayCastResult gjkRayCast(const Support& support, const Vec3& origin, const Vec3& direction, double tolerance,
-                         int maxIterations) {
+                         int maxIterations, double margin = 0) {
     RayCastResult result;
     Vec3 x = origin;
     SupportPoint first = support(origin);
     Vec3 v = x - first.point;
     std::array<SupportPoint, 4> simplex{};
     int count = 0;
-    const double toleranceSquared = tolerance * tolerance;
+    const double toleranceSquared = (margin + tolerance) * (margin + tolerance);  // the stop: |v| ≤ m + tolerance
     bool restarted = false;
     while (v.squaredNorm() > toleranceSquared && result.iterations < maxIterations) {
         ++result.iterations;
         SupportPoint p = support(v);
         Vec3 w = x - p.point;
         double vw = v.dot(w);
-        if (vw > 0) {
+        const double grown = margin > 0 ? margin * v.norm() : 0.0;  // the support plane moved out by m
+        if (vw > grown) {
             double vr = v.dot(direction);
             if (vr >= 0) return result;  // the ray points away from the set: miss
-            result.lambda -= vw / vr;
+            result.lambda -= (vw - grown) / vr;
             x = origin + result.lambda * direction;
             result.normal = v;
         }
         bool duplicate = false;
         for (int i = 0; i < count; ++i)
             duplicate |= simplex[i].vertexA == p.vertexA && simplex[i].vertexB == p.vertexB;
-        if (duplicate && vw <= 0) {
+        if (duplicate && vw <= grown) {
             // No new support point and no progress: converged — or stalled with v still longer
             // than the tolerance. A stall on a triangle that is a supporting facet of C is settled
             // after the loop (the facet's plane). On a triangle that cuts through C the closest
@@ -155,7 +162,7 @@ RayCastResult gjkRayCast(const Support& support, const Vec3& origin, const Vec3&
             // within the tolerance) is on its facet already.
             const double along = facetNormal.dot(direction);
             if (v.squaredNorm() > toleranceSquared && along < -1e-6) {
-                const double lambda = (supportHeight - facetNormal.dot(origin)) / along;
+                const double lambda = (supportHeight + margin - facetNormal.dot(origin)) / along;
                 if (lambda > result.lambda) {
                     const Vec3 hit = origin + lambda * direction;
                     const std::array<Vec3, 4> relative = {hit - simplex[0].point, hit - simplex[1].point,
