@@ -84,22 +84,19 @@ bool matchesXExtent(const Polytope& hull, const Pose& pose, dGeomID geom, int br
 int collideWithOde(dGeomID o1, int class1, dGeomID o2, int class2, int maxContacts, dContactGeom* contact,
                    int skip) {
     const detail::OdeColliders& ode = detail::odeColliders();
-    const detail::OdeCollider* collider = nullptr;
-    bool reverse = false;
-    if (class1 == dConvexClass && class2 == dConvexClass) {
-        collider = &ode.convexConvex;
-    } else if (class1 == dConvexClass || class2 == dConvexClass) {
-        reverse = class1 != dConvexClass;
-        const int other = reverse ? class1 : class2;
-        collider = other == dBoxClass ? &ode.convexBox : other == dPlaneClass ? &ode.convexPlane : nullptr;
-    }
+    // ODE's function takes the convex first (or, convexSecond, the other geom first): `reverse`
+    // when o1, o2 come the other way round.
+    const bool convexFirst = class1 == dConvexClass;
+    const detail::OdeCollider* collider = ode.against(convexFirst ? class2 : class1);
+    bool reverse = !convexFirst;
+    if (collider && collider->convexSecond) reverse = !reverse;
     // ODE's own collider answers nothing for this pair kind (ODE without libccd): neither does this.
     if (collider && collider->fallback == detail::OdeFallback::OdeGivesNone) return 0;
     dColliderFn* function = collider ? collider->function : nullptr;
     if (!function) {
         sayOnce(saidNoOdeCollider,
                 "gdcontact: this ODE does not export its own convex colliders (a static libode, or one built "
-                "with hidden symbols), so after install() box, convex and plane pairs with a plain dCreateConvex "
+                "with hidden symbols), so after install() the pairs it takes over with a plain dCreateConvex "
                 "geom get no contacts; create such geoms with gdc::ode::createConvex (docs/ode.md). (Said once.)");
         return 0;
     }

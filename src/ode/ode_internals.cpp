@@ -117,9 +117,38 @@ void captureOdeColliders() {
         colliders.convexBox = identify(a, box, {"_Z20dCollideConvexBoxCCDP6dxGeomS0_iP12dContactGeomi",
                                                 "_Z17dCollideConvexBoxP6dxGeomS0_iP12dContactGeomi"});
         colliders.convexPlane = identify(a, plane, {"_Z19dCollideConvexPlaneP6dxGeomS0_iP12dContactGeomi"});
-        for (dGeomID geom : {a, b, box, plane}) dGeomDestroy(geom);
+        // The curved geoms install() takes over, overlapping a as b does.
+        dGeomID cylinder = dCreateCylinder(nullptr, 0.4, 1);
+        dGeomID capsule = dCreateCapsule(nullptr, 0.3, 0.6);
+        dGeomID sphere = dCreateSphere(nullptr, 0.5);
+        for (dGeomID other : {cylinder, capsule, sphere}) {
+            dGeomSetPosition(other, 0.1, 0.2, 1.0);
+            dGeomSetRotation(other, tilt);
+        }
+        colliders.convexCylinder = identify(a, cylinder, {"_Z25dCollideConvexCylinderCCDP6dxGeomS0_iP12dContactGeomi"});
+        colliders.convexCapsule = identify(a, capsule, {"_Z24dCollideConvexCapsuleCCDP6dxGeomS0_iP12dContactGeomi",
+                                                         "_Z21dCollideConvexCapsuleP6dxGeomS0_iP12dContactGeomi"});
+        colliders.convexSphere = identify(a, sphere, {"_Z23dCollideConvexSphereCCDP6dxGeomS0_iP12dContactGeomi"});
+        if (colliders.convexSphere.fallback == OdeFallback::Unreachable) {
+            // Without libccd ODE's table holds (sphere, convex): its function takes the sphere first.
+            colliders.convexSphere = identify(sphere, a, {"_Z20dCollideSphereConvexP6dxGeomS0_iP12dContactGeomi"});
+            colliders.convexSphere.convexSecond = true;
+        }
+        for (dGeomID geom : {a, b, box, plane, cylinder, capsule, sphere}) dGeomDestroy(geom);
         probing = false;
     });
+}
+
+const OdeCollider* OdeColliders::against(int otherClass) const {
+    switch (otherClass) {
+        case dConvexClass: return &convexConvex;
+        case dBoxClass: return &convexBox;
+        case dPlaneClass: return &convexPlane;
+        case dCylinderClass: return &convexCylinder;
+        case dCapsuleClass: return &convexCapsule;
+        case dSphereClass: return &convexSphere;
+        default: return nullptr;
+    }
 }
 
 const OdeColliders& odeColliders() {
@@ -135,7 +164,10 @@ const OdeColliders& odeColliders() {
 std::string describeOdeColliders() {
     const OdeColliders& colliders = found();
     return std::string("convex-convex: ") + describe(colliders.convexConvex) +
-           "; convex-box: " + describe(colliders.convexBox) + "; convex-plane: " + describe(colliders.convexPlane);
+           "; convex-box: " + describe(colliders.convexBox) + "; convex-plane: " + describe(colliders.convexPlane) +
+           "; convex-cylinder: " + describe(colliders.convexCylinder) +
+           "; convex-capsule: " + describe(colliders.convexCapsule) +
+           "; convex-sphere: " + describe(colliders.convexSphere);
 }
 
 }  // namespace gdc::ode::detail
