@@ -196,9 +196,6 @@ void recordNearCallback(void* data, dGeomID o1, dGeomID o2) {
     if (count > 0) record(*static_cast<std::vector<Reported>*>(data), o1, o2, contacts, count);
 }
 
-bool isGdcontactClass(int geomClass) {
-    return geomClass == dBoxClass || geomClass == dConvexClass || geomClass == dPlaneClass;
-}
 
 }  // namespace
 
@@ -213,7 +210,7 @@ TEST_CASE("spaceCollide gives dCollide's contacts in the broad phase's order, bi
     // The scene exercises every route: gdcontact's pairs, ODE's (spheres), the nested space.
     int gdcontactPairs = 0, odePairs = 0, nestedPairs = 0;
     for (const Reported& reported : reference) {
-        const bool ours = isGdcontactClass(dGeomGetClass(reported.o1)) && isGdcontactClass(dGeomGetClass(reported.o2));
+        const bool ours = gdc::ode::handles(dGeomGetClass(reported.o1), dGeomGetClass(reported.o2));
         (ours ? gdcontactPairs : odePairs) += 1;
         if (dGeomGetSpace(reported.o1) == pile.nested || dGeomGetSpace(reported.o2) == pile.nested) ++nestedPairs;
     }
@@ -411,7 +408,7 @@ void countNearCallback(void* data, dGeomID o1, dGeomID o2) {
     }
     PairCount& count = *static_cast<PairCount*>(data);
     const int c1 = dGeomGetClass(o1), c2 = dGeomGetClass(o2);
-    const bool ours = isGdcontactClass(c1) && isGdcontactClass(c2) && !(c1 == dPlaneClass && c2 == dPlaneClass);
+    const bool ours = gdc::ode::handles(c1, c2);  // install()'s pairs (sphere–convex among them)
     ++(ours ? count.gdcontact : count.other);
 }
 
