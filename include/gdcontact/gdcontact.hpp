@@ -6,5 +6,6 @@
 #include <gdcontact/polytope.hpp>
 #include <gdcontact/settings.hpp>
 #include <gdcontact/shapes.hpp>
+#include <gdcontact/triangle_mesh.hpp>
 #include <gdcontact/types.hpp>
 #include <gdcontact/version.hpp>
