@@ -3,7 +3,7 @@
 // stages, the mesh adds what a triangle knows beyond that — its neighbours — so that a contact
 // whose normal comes from an edge between two coplanar (or concave) triangles takes the face's
 // normal instead (no bump at a seam), and the triangles' contacts become one manifold by the
-// per-body-pair rule (body_pair.hpp). docs/algorithm.md, "Triangle meshes".
+// per-body-pair rule (body_pair.hpp). docs/meshes.md.
 #pragma once
 
 #include <gdcontact/body_pair.hpp>

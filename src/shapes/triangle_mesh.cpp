@@ -1,5 +1,5 @@
 // A triangle mesh built once: each triangle's normal, its neighbours across each edge and which
-// edges are active (docs/algorithm.md, "Triangle meshes"), and a bounding-volume tree over the
+// edges are active (docs/meshes.md), and a bounding-volume tree over the
 // triangles' bounds for the mid phase.
 #include <gdcontact/triangle_mesh.hpp>
 
