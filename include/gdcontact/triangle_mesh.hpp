@@ -57,6 +57,9 @@ public:
     /// normal differs by more than Settings::angularTolerance. An inactive edge (coplanar within it,
     /// or concave) never gives a contact its normal.
     bool edgeActive(int t, int e) const;
+    /// The triangle across edge e of triangle t: −1 on the boundary, where more than two triangles
+    /// share the edge, or where the neighbour is wound the other way (each an active edge).
+    int neighbour(int t, int e) const;
     /// Appends to `out` the triangles (ascending, skipped ones never) whose bounds overlap `box`
     /// (the mesh's frame), from the bounding-volume tree: the cost grows with the answer and the
     /// tree's depth, not with the mesh's size.

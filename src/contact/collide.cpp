@@ -225,27 +225,7 @@ struct GeneralPairHooksIn : GeneralPairHooks {
     static constexpr ImportanceOrder kOrder = order;
     explicit GeneralPairHooksIn(const Settings& settings) : GeneralPairHooks(settings) {}
 };
-
-// The general hooks with the normal given rather than found: stage 1 is the caller's, as exact as
-// the plane's normal is for a half-space (no overhang check, no refinement).
-struct GivenNormalHooks : GeneralPairHooks {
-    GivenNormalHooks(const Settings& settings, const Vec3& normalInA) : GeneralPairHooks(settings), normalInA(normalInA) {}
-    Vec3 normalInA;
-    Stage1 growthNormal(const PairFrame& frame, const Vec3&) const {
-        Stage1 stage1;
-        stage1.normal = normalInA;
-        stage1.normalOverlap = frame.pair.overlapAlong(normalInA);
-        return stage1;
-    }
-    bool refinesNormal() const { return false; }
-};
 }  // namespace
-
-void collideAlongInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB, const Vec3& normal,
-                      const Settings& settings, Manifold& out) {
-    GivenNormalHooks hooks(settings, poseA.rotation.transpose() * normal);
-    composeStages(hooks, a, poseA, b, poseB, settings, out);  // never delegates
-}
 
 template <ImportanceOrder order>
 void collideGeneralInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,

@@ -37,13 +37,6 @@ template <ImportanceOrder order>
 void collideGeneralInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB,
                         const Settings& settings, Manifold& out);
 
-/// The second and third stages of two polytopes along a normal the caller gives (world, unit, from A
-/// towards B) instead of the growth distance's: the features along it, their intersection, the
-/// depth confirmation. A triangle mesh's contact whose normal came from an inactive edge takes its
-/// face's normal this way (mesh_pair.cpp). Poses must be finite.
-void collideAlongInto(const Polytope& a, const Pose& poseA, const Polytope& b, const Pose& poseB, const Vec3& normal,
-                      const Settings& settings, Manifold& out);
-
 /// Any polytope on a half-space (half_space.cpp, the general polytope-on-plane hooks: the support
 /// search and the Gauss map), written into `out`. poseA must be finite.
 void collideGeneralInto(const Polytope& a, const Pose& poseA, const UnitHalfSpace& b, const Settings& settings,

@@ -106,6 +106,7 @@ struct TriangleMesh::Data {
     std::vector<std::array<int, 3>> triangles;
     std::vector<Vec3> normals;               // unit; zero for a skipped triangle
     std::vector<unsigned char> activeEdges;  // bit e: edge e is active
+    std::vector<std::array<int, 3>> neighbours;  // across each edge; −1: none
     int skipped = 0;
     std::vector<MeshNode> nodes;  // nodes[0] the root
     std::vector<int> order;       // the kept triangles, as the leaves hold them
@@ -135,6 +136,7 @@ TriangleMesh::TriangleMesh(std::vector<Vec3> vertices, const std::vector<std::ar
     const int count = static_cast<int>(triangles.size());
     d.normals.assign(count, Vec3::Zero());
     d.activeEdges.assign(count, 0);
+    d.neighbours.assign(count, {-1, -1, -1});
     std::vector<Aabb> bounds(count);
     std::vector<int> kept;
     for (int t = 0; t < count; ++t) {
@@ -170,6 +172,7 @@ TriangleMesh::TriangleMesh(std::vector<Vec3> vertices, const std::vector<std::ar
             if (consistent) {
                 const std::pair<int, int>& other = around[0].first == t ? around[1] : around[0];
                 const int u = other.first;
+                d.neighbours[t][e] = u;
                 const int opposite = triangles[u][(other.second + 2) % 3];
                 const Vec3& n = d.normals[t];
                 const bool coplanar = n.dot(d.normals[u]) >= cosine;
@@ -196,6 +199,7 @@ const std::vector<Vec3>& TriangleMesh::vertices() const { return data_->vertices
 const std::array<int, 3>& TriangleMesh::triangle(int t) const { return data_->triangles.at(t); }
 const Vec3& TriangleMesh::triangleNormal(int t) const { return data_->normals.at(t); }
 bool TriangleMesh::edgeActive(int t, int e) const { return (data_->activeEdges.at(t) >> e) & 1; }
+int TriangleMesh::neighbour(int t, int e) const { return data_->neighbours.at(t).at(e); }
 
 const Polytope& TriangleMesh::trianglePrism(int t) const {
     const Data& d = *data_;
