@@ -82,7 +82,8 @@ struct MeshContact {
     int triangle = -1;             ///< the triangle it came from
 };
 
-/// Contacts of a convex polytope A with a mesh, written into `out` (cleared first): each triangle
+/// Contacts of a convex shape A (a polytope, a sphere, a capsule or a cylinder; not a half-space)
+/// with a mesh, written into `out` (cleared first): each triangle
 /// whose bounds meet A's is collided with A by the paper's three stages. Where the triangle's
 /// Gauss-map feature along the growth-distance normal is its face, or an inactive edge or vertex,
 /// the contacts are the features' intersection along the face's own normal — what the plane of the
@@ -91,8 +92,8 @@ struct MeshContact {
 /// or sides (no contact: the shape is behind a one-sided surface there). Then the contacts of every
 /// triangle are merged and reduced as a body pair's (reduceBodyPairContacts,
 /// Settings::maxBodyPairContacts per normal cluster; 0 keeps all), in triangle order. Throws
-/// InvalidInput for a non-finite pose.
-GDCONTACT_API void collide(const Polytope& a, const Pose& poseA, const TriangleMesh& mesh, const Pose& poseMesh,
+/// InvalidInput for a non-finite pose, a half-space or a curved size shapes.hpp refuses.
+GDCONTACT_API void collide(const ShapeRef& a, const Pose& poseA, const TriangleMesh& mesh, const Pose& poseMesh,
                            const Settings& settings, std::vector<MeshContact>& out);
 
 }  // namespace gdc

@@ -1,14 +1,14 @@
-// A convex polytope on a triangle mesh (triangle_mesh.hpp): the mid phase picks the triangles the
-// polytope's bounds reach; each is a shape of the pair table (TriangleMesh::trianglePrism: its face
-// extruded behind it, so that every stage applies as to any hull), and the mesh adds what a triangle knows
-// beyond that: which side is its front, and which of its edges are inactive. The triangles'
-// contacts become one manifold by the per-body-pair rule.
+// A convex shape on a triangle mesh (triangle_mesh.hpp): the mid phase picks the triangles the
+// shape's bounds reach; each is a shape of the pair table (TriangleMesh::trianglePrism: its face
+// extruded behind it, so that every stage applies as to any hull), and the mesh adds what a
+// triangle knows beyond that: which side is its front, which of its edges are inactive, and which
+// are seams inside a flat region. The triangles' contacts become one manifold by the per-body-pair
+// rule.
 #include <gdcontact/triangle_mesh.hpp>
 
-#include "contact/feature_geometry.hpp"
-#include "contact/feature_intersection.hpp"
-#include "contact/gauss_map.hpp"
+#include "contact/disc_intersection.hpp"
 #include "contact/pair_table.hpp"
+#include "contact/shape_body.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -40,21 +40,16 @@ bool featureIsActive(const TriangleMesh& mesh, int t, const Vec3& outward, doubl
     return mesh.edgeActive(t, top) || mesh.edgeActive(t, (top + 2) % 3);
 }
 
-// A's side of the contacts along one face normal: its Gauss-map feature there, in its own frame.
-// Every triangle of a flat region has the same normal, so the feature is found once for all of
-// them (`normal` remembers which it is for).
-struct FeatureAlong {
-    Vec3 normal = Vec3::Zero();  // A's frame, from A towards the mesh; zero: none yet
-    FeatureGeometry geometry;
-    SmallVector<int, 8> pieces;
-    void place(const Polytope& a, const Vec3& towardsMesh, const AngularTolerance& tolerance) {
-        if (towardsMesh == normal) return;
-        normal = towardsMesh;
-        const Feature feature = selectFeature(a, towardsMesh, a.supportVertex(towardsMesh), tolerance);
-        featurePieces(a, feature, towardsMesh, tolerance, pieces);
-        geometry = featureGeometry(a, feature, pieces, Pose{}, a.vertices().data());
+// Which edges of triangle t are seams: inactive, and the neighbour's normal the same to 1e-12, so
+// that the two triangles' points join one cluster of the body-pair reduction.
+std::array<bool, 3> seamsOf(const TriangleMesh& mesh, int t) {
+    std::array<bool, 3> seam{};
+    for (int e = 0; e < 3; ++e) {
+        const int u = mesh.neighbour(t, e);
+        seam[e] = u >= 0 && !mesh.edgeActive(t, e) && mesh.triangleNormal(t).dot(mesh.triangleNormal(u)) >= 1 - 1e-12;
     }
-};
+    return seam;
+}
 
 // Whether x and y coincide seen along `up` (unit), to `tolerance`.
 bool sameAlong(const Vec3& x, const Vec3& y, const Vec3& up, double tolerance) {
@@ -62,108 +57,127 @@ bool sameAlong(const Vec3& x, const Vec3& y, const Vec3& up, double tolerance) {
     return (apart - apart.dot(up) * up).squaredNorm() <= tolerance * tolerance;
 }
 
-// Drops from points[first, end) those that lie on a seam of triangle t — an edge whose neighbour
-// has the same normal to 1e-12, so that the two triangles' points join one cluster — unless they
-// are a vertex of A's feature. Such a point lies inside the region A's feature has on the flat
-// surface, or on its boundary between two of its vertices; the depth along a plane is affine, so
-// it is never the deepest or an extreme of the region: the body-pair reduction would only spend
-// its time on it (a resting box on half-metre cells brings some forty of them).
-void dropSeamPoints(const TriangleMesh& mesh, int t, const FeatureGeometry& face, const FeatureGeometry& feature,
-                    const Vec3& up, double tolerance, LiftedPoints& points, std::size_t first) {
-    bool seam[3];
-    bool anySeam = false;
-    for (int e = 0; e < 3; ++e) {
-        const int u = mesh.neighbour(t, e);
-        seam[e] = u >= 0 && !mesh.edgeActive(t, e) && mesh.triangleNormal(t).dot(mesh.triangleNormal(u)) >= 1 - 1e-12;
-        anySeam = anySeam || seam[e];
+// Triangle t's contacts along its face normal, appended to `points` (A's frame): what the plane of
+// the face gives — A's feature along the normal lifted onto it (`plane`: for a polytope its
+// feature's vertices, for a cylinder's cap the regular polygon of the budget from its deepest rim
+// point) — within the region the flat surface around the triangle covers. A triangle whose three
+// edges are seams takes the plane's points over it. Any other triangle intersects A's feature with
+// itself (stage 3), then drops the points on its seams that are not the plane's: such a point lies
+// inside the flat region's contact area, or on its boundary between two of the plane's points, and
+// the depth along a plane is affine, so it is never the deepest or an extreme of the area (and on
+// a cap a crossing would move the points as the seams pass under it, where the plane's stay put).
+// No depth confirmation: A's deepest point may lie over another triangle, which reports it.
+void appendAlongFace(const AnyFeature& feature, const ShapeBody& body, const TriangleMesh& mesh, const Pose& meshInA,
+                     int t, const Settings& settings, LiftedPoints& scratch, LiftedPoints& points) {
+    const Vec3 up = meshInA.rotation * mesh.triangleNormal(t);  // A's frame, from the face towards A
+    AnyFeature face;
+    face.geometry.type = FeatureType::Face;
+    double size = body.radius;
+    for (int corner : mesh.triangle(t)) {
+        face.geometry.points.push_back(meshInA.apply(mesh.vertices()[corner]));
+        size = std::max(size, (face.geometry.points[face.geometry.points.size() - 1] - face.geometry.points[0]).norm());
     }
-    if (!anySeam) return;
+    const SmallVector<Vec3, 16>& corners = face.geometry.points;
+    face.geometry.planeNormal = up;
+    face.geometry.planeOffset = up.dot(corners[0]);
+    const double tolerance = 1e-9 * size;
+    const int wholeRim = std::min(settings.rimPointsPerTurn, settings.maxContacts);
+    auto intersect = [&](const AnyFeature& with, LiftedPoints& out) {
+        intersectAnyFeatures(feature, with, -up, tolerance, -settings.margin, settings.spanContactRegion,
+                             settings.rimPointsPerTurn, wholeRim, out);
+    };
+    scratch.clear();
+    intersect(planeFeature(PlaneInA{up, face.geometry.planeOffset}, body), scratch);  // the plane's points
+    const std::array<bool, 3> seam = seamsOf(mesh, t);
+    // Within the triangle seen along up, or on edge e of it, to the tolerance.
+    auto beyondEdge = [&](const Vec3& x, int e) {
+        const Vec3 edge = corners[(e + 1) % 3] - corners[e];
+        return (edge.cross(x - corners[e])).dot(up) / edge.norm();  // > 0: inside of edge e
+    };
+    if (seam[0] && seam[1] && seam[2]) {
+        for (const LiftedPoint& point : scratch)
+            if (beyondEdge(point.position, 0) >= -tolerance && beyondEdge(point.position, 1) >= -tolerance &&
+                beyondEdge(point.position, 2) >= -tolerance)
+                points.push_back(point);
+        return;
+    }
+    const std::size_t first = points.size();
+    intersect(face, points);
     auto onSeam = [&](const Vec3& x) {
-        for (int e = 0; e < 3; ++e) {
-            if (!seam[e]) continue;
-            const Vec3& p = face.points[e];
-            const Vec3 edge = face.points[(e + 1) % 3] - p;
-            if (std::abs((x - p).cross(edge).dot(up)) <= tolerance * edge.norm()) return true;
-        }
+        for (int e = 0; e < 3; ++e)
+            if (seam[e] && std::abs(beyondEdge(x, e)) <= tolerance) return true;
         return false;
     };
-    auto featureVertex = [&](const Vec3& x) {
-        for (const Vec3& vertex : feature.points)
-            if (sameAlong(x, vertex, up, tolerance)) return true;
-        for (const FeatureGeometry& piece : feature.capFaces)
-            for (const Vec3& vertex : piece.points)
-                if (sameAlong(x, vertex, up, tolerance)) return true;
+    auto planePoint = [&](const Vec3& x) {
+        for (const LiftedPoint& point : scratch)
+            if (sameAlong(x, point.position, up, tolerance)) return true;
         return false;
     };
     std::size_t kept = first;
     for (std::size_t i = first; i < points.size(); ++i)
-        if (!onSeam(points[i].position) || featureVertex(points[i].position)) points[kept++] = points[i];
+        if (!onSeam(points[i].position) || planePoint(points[i].position)) points[kept++] = points[i];
     points.setSize(kept);
 }
 
-// Triangle t's contacts along its face normal, appended: A's feature along it intersected with the
-// face in the contact plane (stage 3), each point with its own depth — what the plane of the face
-// gives, clipped to the triangle. No depth confirmation: A's deepest point may lie beyond this
-// triangle, over the neighbour that reports it.
-void appendAlongFace(const Polytope& a, const TriangleMesh& mesh, const Pose& meshInA, int t,
-                     const AngularTolerance& angularTolerance, const Settings& settings, FeatureAlong& along,
-                     LiftedPoints& points) {
-    const Vec3 up = meshInA.rotation * mesh.triangleNormal(t);  // A's frame, from the face towards A
-    along.place(a, -up, angularTolerance);
-    FeatureGeometry face;
-    face.type = FeatureType::Face;
-    double size = a.radius();
-    for (int corner : mesh.triangle(t)) {
-        face.points.push_back(meshInA.apply(mesh.vertices()[corner]));
-        size = std::max(size, (face.points.back() - face.points[0]).norm());
+// A's feature along one normal (A's frame, towards the mesh). Every triangle of a flat region has
+// the same normal, so it is found once for all of them.
+struct FeatureAlong {
+    Vec3 normal = Vec3::Zero();  // zero: none yet
+    AnyFeature feature;
+    const AnyFeature& at(const ShapeBody& body, const Vec3& towardsMesh, const AngularTolerance& tolerance) {
+        if (towardsMesh != normal) normal = towardsMesh, feature = body.feature(towardsMesh, tolerance);
+        return feature;
     }
-    face.planeNormal = up;
-    face.planeOffset = up.dot(face.points[0]);
-    const double tolerance = 1e-9 * size;
-    const std::size_t first = points.size();
-    intersectFeatures(view(along.geometry), view(face), -up, tolerance, -settings.margin, settings.spanContactRegion,
-                      points);
-    dropSeamPoints(mesh, t, face, along.geometry, up, tolerance, points, first);
+};
+
+// The shape as the pair table takes it, its size checked where it enters.
+Shape enterShape(const ShapeRef& a) {
+    switch (a.kind()) {
+        case ShapeRef::Kind::Polytope: return Shape::of(*a.polytope());
+        case ShapeRef::Kind::HalfSpace: throw InvalidInput("a half-space is no shape to collide with a triangle mesh");
+        default: return enterRound(a.kind(), a.radius(), a.length(), "A");
+    }
 }
 
 }  // namespace
 
-void collide(const Polytope& a, const Pose& poseA, const TriangleMesh& mesh, const Pose& poseMesh,
+void collide(const ShapeRef& shapeA, const Pose& poseA, const TriangleMesh& mesh, const Pose& poseMesh,
              const Settings& settings, std::vector<MeshContact>& out) {
     out.clear();
-    if (!poseA.isFinite()) throwPoseNotFinite("A");
+    if (shapeA.kind() != ShapeRef::Kind::HalfSpace && !poseA.isFinite()) throwPoseNotFinite("A");
     if (!poseMesh.isFinite()) throwPoseNotFinite("B (the mesh)");
+    const Shape shape = enterShape(shapeA);
+    const ShapeBody body(shape, Pose{}, settings.bruteForceSupportLimit);  // in A's own frame
     // A's bounds in the mesh's frame, exact: its supports along the mesh's axes (a resting box's
     // are its footprint, where the ball about its centroid would reach twice as many triangles),
     // grown by the margin.
-    const Vec3 centreWorld = poseA.apply(a.centroid());
-    const Vec3 centre = poseMesh.applyInverse(centreWorld);
     const Pose meshInA = poseA.relative(poseMesh);
     const Pose aInMesh = poseMesh.relative(poseA);
     const double grown = std::max(settings.margin, 0.0);
     Aabb bounds;
     for (int axis = 0; axis < 3; ++axis) {
         const Vec3 along = meshInA.rotation.col(axis);  // the mesh's axis in A's frame
-        bounds.upper[axis] = aInMesh.apply(a.vertices()[a.supportVertex(along)])[axis] + grown;
-        bounds.lower[axis] = aInMesh.apply(a.vertices()[a.supportVertex(-along)])[axis] - grown;
+        bounds.upper[axis] = aInMesh.apply(body.support(along))[axis] + grown;
+        bounds.lower[axis] = aInMesh.apply(body.support(-along))[axis] - grown;
     }
-    const double reach = a.radius() + grown;
     std::vector<int> triangles;
     mesh.overlapping(bounds, triangles);
     if (triangles.empty()) return;
 
+    const Vec3 centreWorld = poseA.apply(body.centre);
+    const Vec3 centre = aInMesh.apply(body.centre);
+    const double reach = body.radius + grown;
     const double cosine = std::cos(settings.angularTolerance), sine = std::sin(settings.angularTolerance);
+    const AngularTolerance angularTolerance(settings.angularTolerance);
     std::vector<BodyPairContact> contacts;
     std::vector<int> from;  // each contact's triangle
     Manifold manifold;
-    const AngularTolerance angularTolerance(settings.angularTolerance);
     FeatureAlong along;
-    LiftedPoints lifted;
+    LiftedPoints lifted, scratch;
     for (int t : triangles) {
         const Vec3& n = mesh.triangleNormal(t);
-        const std::array<int, 3>& corners = mesh.triangle(t);
-        const double aboveFace = n.dot(centre - mesh.vertices()[corners[0]]);
-        if (aboveFace > reach || aboveFace < -a.radius()) continue;  // wholly in front (beyond the margin) or behind
+        const double aboveFace = n.dot(centre - mesh.vertices()[mesh.triangle(t)[0]]);
+        if (aboveFace > reach || aboveFace < -body.radius) continue;  // wholly in front (beyond the margin) or behind
         // The face's normal wherever the triangle's feature is its face or an inactive edge or vertex:
         // then the mesh answers as the plane of its face would, clipped to the triangle. A triangle
         // none of whose edges is active (inside a flat region) has no other feature: the growth
@@ -171,7 +185,7 @@ void collide(const Polytope& a, const Pose& poseA, const TriangleMesh& mesh, con
         const bool anyActiveEdge = mesh.edgeActive(t, 0) || mesh.edgeActive(t, 1) || mesh.edgeActive(t, 2);
         bool alongFace = !anyActiveEdge;
         if (anyActiveEdge) {
-            collidePair(Shape::of(a), poseA, Shape::of(mesh.trianglePrism(t)), poseMesh, PairQuery{settings}, manifold);
+            collidePair(shape, poseA, Shape::of(mesh.trianglePrism(t)), poseMesh, PairQuery{settings}, manifold);
             if (manifold.empty()) continue;
             const Vec3 outward = -(poseMesh.rotation.transpose() * manifold.normal);  // triangle → A
             const double cosineToFace = outward.dot(n);
@@ -180,10 +194,11 @@ void collide(const Polytope& a, const Pose& poseA, const TriangleMesh& mesh, con
             // behind the surface there (or beside its boundary), where a one-sided mesh has nothing.
             if (!alongFace && !(cosineToFace > 1e-9)) continue;
         }
-        if (alongFace) {  // the face's normal (see featureIsActive)
+        if (alongFace) {
+            const Vec3 down = -(meshInA.rotation * n);  // A's frame, from A towards the face
             lifted.clear();
-            appendAlongFace(a, mesh, meshInA, t, angularTolerance, settings, along, lifted);
-            const Vec3 normal = -(poseMesh.rotation * n);  // from A towards the mesh
+            appendAlongFace(along.at(body, down, angularTolerance), body, mesh, meshInA, t, settings, scratch, lifted);
+            const Vec3 normal = -(poseMesh.rotation * n);  // world, from A towards the mesh
             for (const LiftedPoint& point : lifted) {
                 contacts.push_back({poseA.apply(point.position), -normal, point.depth});
                 from.push_back(t);
