@@ -57,6 +57,17 @@ bool sameAlong(const Vec3& x, const Vec3& y, const Vec3& up, double tolerance) {
     return (apart - apart.dot(up) * up).squaredNorm() <= tolerance * tolerance;
 }
 
+// The plane's points (A's feature lifted onto a plane) for the last plane asked: the triangles of
+// a flat region share it, up to rounding in their normals and offsets.
+struct PlanePoints {
+    Vec3 normal = Vec3::Zero();  // zero: none yet
+    double offset = 0;
+    LiftedPoints points;
+    bool holds(const Vec3& up, double upOffset, double tolerance) const {
+        return std::abs(upOffset - offset) <= tolerance && (up - normal).squaredNorm() <= 1e-24;
+    }
+};
+
 // Triangle t's contacts along its face normal, appended to `points` (A's frame): what the plane of
 // the face gives — A's feature along the normal lifted onto it (`plane`: for a polytope its
 // feature's vertices, for a cylinder's cap the regular polygon of the budget from its deepest rim
@@ -68,7 +79,7 @@ bool sameAlong(const Vec3& x, const Vec3& y, const Vec3& up, double tolerance) {
 // a cap a crossing would move the points as the seams pass under it, where the plane's stay put).
 // No depth confirmation: A's deepest point may lie over another triangle, which reports it.
 void appendAlongFace(const AnyFeature& feature, const ShapeBody& body, const TriangleMesh& mesh, const Pose& meshInA,
-                     int t, const Settings& settings, LiftedPoints& scratch, LiftedPoints& points) {
+                     int t, const Settings& settings, PlanePoints& plane, LiftedPoints& points) {
     const Vec3 up = meshInA.rotation * mesh.triangleNormal(t);  // A's frame, from the face towards A
     AnyFeature face;
     face.geometry.type = FeatureType::Face;
@@ -86,8 +97,12 @@ void appendAlongFace(const AnyFeature& feature, const ShapeBody& body, const Tri
         intersectAnyFeatures(feature, with, -up, tolerance, -settings.margin, settings.spanContactRegion,
                              settings.rimPointsPerTurn, wholeRim, out);
     };
-    scratch.clear();
-    intersect(planeFeature(PlaneInA{up, face.geometry.planeOffset}, body), scratch);  // the plane's points
+    if (!plane.holds(up, face.geometry.planeOffset, tolerance)) {
+        plane.normal = up, plane.offset = face.geometry.planeOffset;
+        plane.points.clear();
+        intersect(planeFeature(PlaneInA{up, plane.offset}, body), plane.points);
+    }
+    const LiftedPoints& scratch = plane.points;
     const std::array<bool, 3> seam = seamsOf(mesh, t);
     // Within the triangle seen along up, or on edge e of it, to the tolerance.
     auto beyondEdge = [&](const Vec3& x, int e) {
@@ -173,7 +188,8 @@ void collide(const ShapeRef& shapeA, const Pose& poseA, const TriangleMesh& mesh
     std::vector<int> from;  // each contact's triangle
     Manifold manifold;
     FeatureAlong along;
-    LiftedPoints lifted, scratch;
+    LiftedPoints lifted;
+    PlanePoints plane;
     for (int t : triangles) {
         const Vec3& n = mesh.triangleNormal(t);
         const double aboveFace = n.dot(centre - mesh.vertices()[mesh.triangle(t)[0]]);
@@ -197,7 +213,7 @@ void collide(const ShapeRef& shapeA, const Pose& poseA, const TriangleMesh& mesh
         if (alongFace) {
             const Vec3 down = -(meshInA.rotation * n);  // A's frame, from A towards the face
             lifted.clear();
-            appendAlongFace(along.at(body, down, angularTolerance), body, mesh, meshInA, t, settings, scratch, lifted);
+            appendAlongFace(along.at(body, down, angularTolerance), body, mesh, meshInA, t, settings, plane, lifted);
             const Vec3 normal = -(poseMesh.rotation * n);  // world, from A towards the mesh
             for (const LiftedPoint& point : lifted) {
                 contacts.push_back({poseA.apply(point.position), -normal, point.depth});
