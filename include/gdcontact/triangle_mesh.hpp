@@ -82,6 +82,14 @@ struct MeshContact {
     int triangle = -1;             ///< the triangle it came from
 };
 
+/// Which triangles a mesh query may use (ODE's dTriCallback, say): `accepts(context, t)` is asked
+/// once for each triangle the mid phase finds, before it is collided; a triangle it refuses gives
+/// no contact and takes no place in the reduction. Without `accepts`, every triangle.
+struct TriangleFilter {
+    bool (*accepts)(void* context, int triangle) = nullptr;
+    void* context = nullptr;
+};
+
 /// Contacts of a convex shape A (a polytope, a sphere, a capsule or a cylinder; not a half-space)
 /// with a mesh, written into `out` (cleared first): each triangle
 /// whose bounds meet A's is collided with A by the paper's three stages. Where the triangle's
@@ -94,6 +102,6 @@ struct MeshContact {
 /// Settings::maxBodyPairContacts per normal cluster; 0 keeps all), in triangle order. Throws
 /// InvalidInput for a non-finite pose, a half-space or a curved size shapes.hpp refuses.
 GDCONTACT_API void collide(const ShapeRef& a, const Pose& poseA, const TriangleMesh& mesh, const Pose& poseMesh,
-                           const Settings& settings, std::vector<MeshContact>& out);
+                           const Settings& settings, std::vector<MeshContact>& out, const TriangleFilter& filter = {});
 
 }  // namespace gdc

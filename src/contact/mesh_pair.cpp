@@ -157,7 +157,7 @@ Shape enterShape(const ShapeRef& a) {
 }  // namespace
 
 void collide(const ShapeRef& shapeA, const Pose& poseA, const TriangleMesh& mesh, const Pose& poseMesh,
-             const Settings& settings, std::vector<MeshContact>& out) {
+             const Settings& settings, std::vector<MeshContact>& out, const TriangleFilter& filter) {
     out.clear();
     if (shapeA.kind() != ShapeRef::Kind::HalfSpace && !poseA.isFinite()) throwPoseNotFinite("A");
     if (!poseMesh.isFinite()) throwPoseNotFinite("B (the mesh)");
@@ -177,6 +177,10 @@ void collide(const ShapeRef& shapeA, const Pose& poseA, const TriangleMesh& mesh
     }
     std::vector<int> triangles;
     mesh.overlapping(bounds, triangles);
+    if (filter.accepts)
+        triangles.erase(std::remove_if(triangles.begin(), triangles.end(),
+                                       [&](int t) { return !filter.accepts(filter.context, t); }),
+                        triangles.end());
     if (triangles.empty()) return;
 
     const Vec3 centreWorld = poseA.apply(body.centre);

@@ -12,6 +12,7 @@
 #include "round_geoms.hpp"
 #include "geom_reading.hpp"
 #include "thread_cache.hpp"
+#include "trimesh_geoms.hpp"
 #include "write_contacts.hpp"
 #include "contact/pair_table.hpp"
 
@@ -41,7 +42,7 @@ using detail::readPoseInto;
 
 [[noreturn, gnu::cold, gnu::noinline]] void unsupportedClass(int geomClass) {
     misuse(std::string("gdc::ode::collide handles box, convex (gdc::ode::createConvex), plane, sphere, "
-                       "capsule and cylinder geoms in the pairs install() overrides; it got a ") +
+                       "capsule, cylinder and trimesh geoms in the pairs install() overrides; it got a ") +
            className(geomClass) + " (leave that pair to ODE: install() overrides only the supported pairs)");
 }
 
@@ -231,6 +232,7 @@ int collideRound(const detail::ResolvedPair& pair, int maxContacts, dContactGeom
     out.o2 = o2;
     out.class1 = class1;
     out.class2 = class2;
+    if (class1 == dTriMeshClass || class2 == dTriMeshClass) return detail::resolveMeshPair(settings, cache, out);
     if (detail::isRoundClass(class1) || detail::isRoundClass(class2)) return resolveRound(settings, cache, out);
     if (class1 == dPlaneClass || class2 == dPlaneClass) {
         // The plane is always the core's B; the core's A is o2 when o1 is the plane.
@@ -324,6 +326,7 @@ int collideRound(const detail::ResolvedPair& pair, int maxContacts, dContactGeom
         case detail::ResolvedPair::Kind::PolytopePlane:
             return collidePolytopeWithPlane(pair, maxContacts, contact, skip, settings, cache, pairCache);
         case detail::ResolvedPair::Kind::Round: return collideRound(pair, maxContacts, contact, skip, settings, cache);
+        case detail::ResolvedPair::Kind::Mesh: return detail::collideMeshPair(pair, maxContacts, contact, skip, settings);
         case detail::ResolvedPair::Kind::Ode: break;
     }
     return detail::collideWithOde(pair.o1, pair.class1, pair.o2, pair.class2, maxContacts, contact, skip);

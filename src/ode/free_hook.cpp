@@ -2,6 +2,7 @@
 
 #include "convex_registry.hpp"
 #include "pair_cache_table.hpp"
+#include "trimesh_geoms.hpp"
 
 #include <ode/ode.h>
 
@@ -33,6 +34,7 @@ void freeHook(void* pointer, dsizeint size) noexcept {
     if (pointer) {
         pairCacheTable().noteFreed(pointer);
         forgetConvex(pointer);
+        forgetTrimeshData(pointer);
     }
     if (dFreeFunction* previous = hook().previousFree.load(std::memory_order_acquire))
         previous(pointer, size);

@@ -1,6 +1,7 @@
 // ODE's free handler, the only notice of a geom's end ODE 0.16.2 gives (it has no geom-destroy
-// callback): the adapter's hook forgets a freed geom's hull (convex_registry) and its pair-cache
-// entries (pair_cache_table), then forwards to the handler that was active before it.
+// callback): the adapter's hook forgets a freed geom's hull (convex_registry), its pair-cache
+// entries (pair_cache_table) and a freed trimesh data's mesh (trimesh_geoms), then forwards to
+// the handler that was active before it.
 #pragma once
 
 namespace gdc::ode::detail {

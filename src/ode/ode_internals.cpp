@@ -134,7 +134,17 @@ void captureOdeColliders() {
             colliders.convexSphere = identify(sphere, a, {"_Z20dCollideSphereConvexP6dxGeomS0_iP12dContactGeomi"});
             colliders.convexSphere.convexSecond = true;
         }
-        for (dGeomID geom : {a, b, box, plane, cylinder, capsule, sphere}) dGeomDestroy(geom);
+        // A trimesh floor at z = 0 (two triangles, face angles built as ODE's demo_trimesh does).
+        // (dGeomTriMeshDataBuildSimple: dReal vertices at a dVector3's stride, either precision.)
+        static const dReal floorVertices[] = {-5, -5, 0, 0, 5, -5, 0, 0, 5, 5, 0, 0, -5, 5, 0, 0};
+        static const dTriIndex floorIndices[] = {0, 1, 2, 0, 2, 3};
+        dTriMeshDataID floorData = dGeomTriMeshDataCreate();
+        dGeomTriMeshDataBuildSimple(floorData, floorVertices, 4, floorIndices, 6);
+        dGeomTriMeshDataPreprocess2(floorData, 1U << dTRIDATAPREPROCESS_BUILD_FACE_ANGLES, nullptr);
+        dGeomID trimesh = dCreateTriMesh(nullptr, floorData, nullptr, nullptr, nullptr);
+        colliders.convexTrimesh = identify(a, trimesh, {"_Z21dCollideConvexTrimeshP6dxGeomS0_iP12dContactGeomi"});
+        for (dGeomID geom : {a, b, box, plane, cylinder, capsule, sphere, trimesh}) dGeomDestroy(geom);
+        dGeomTriMeshDataDestroy(floorData);
         probing = false;
     });
 }
@@ -147,6 +157,7 @@ const OdeCollider* OdeColliders::against(int otherClass) const {
         case dCylinderClass: return &convexCylinder;
         case dCapsuleClass: return &convexCapsule;
         case dSphereClass: return &convexSphere;
+        case dTriMeshClass: return &convexTrimesh;
         default: return nullptr;
     }
 }
@@ -167,7 +178,8 @@ std::string describeOdeColliders() {
            "; convex-box: " + describe(colliders.convexBox) + "; convex-plane: " + describe(colliders.convexPlane) +
            "; convex-cylinder: " + describe(colliders.convexCylinder) +
            "; convex-capsule: " + describe(colliders.convexCapsule) +
-           "; convex-sphere: " + describe(colliders.convexSphere);
+           "; convex-sphere: " + describe(colliders.convexSphere) +
+           "; convex-trimesh: " + describe(colliders.convexTrimesh);
 }
 
 }  // namespace gdc::ode::detail

@@ -39,12 +39,12 @@ struct OdeCollider {
     bool convexSecond = false;        // ODE's function takes the other geom first (sphere–convex without libccd)
 };
 struct OdeColliders {
-    OdeCollider convexConvex, convexBox, convexPlane, convexCylinder, convexCapsule, convexSphere;
+    OdeCollider convexConvex, convexBox, convexPlane, convexCylinder, convexCapsule, convexSphere, convexTrimesh;
     /// The collider for a plain convex against a geom of `otherClass`; nullptr for a pair with none.
     const OdeCollider* against(int otherClass) const;
 };
 /// ODE's own colliders for convex–convex, convex–box (convex first), convex–plane and convex
-/// against a cylinder, a capsule and a sphere (the pairs install() takes over), found once,
+/// against a cylinder, a capsule, a sphere and a trimesh (the pairs install() takes over), found once,
 /// at the first install() of the process, before it overrides them (ODE's table is then ODE's):
 /// each pair's answer through dCollide on two overlapping scratch geoms is compared, contact for
 /// contact, with the answer of each exported candidate (libccd's and ODE's own); the one that

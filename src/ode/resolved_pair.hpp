@@ -20,13 +20,15 @@ struct ResolvedPair {
         Polytopes,      // box or known convex, both
         PolytopePlane,  // box or known convex against a plane
         Round,          // a sphere, capsule or cylinder against a body or a plane (round_geoms.hpp)
+        Mesh,           // a box, known convex, capsule or cylinder against a trimesh (trimesh_geoms.hpp)
         Ode,            // a convex geom whose hull gdcontact does not know: ODE's collider
     };
     dGeomID o1 = nullptr, o2 = nullptr;
     int class1 = 0, class2 = 0;
     Kind kind = Kind::Ode;
     // Polytopes and Round: the core's A is o2 (the pair is ordered by position; a plane is always
-    // the core's B). PolytopePlane: o1 is the plane.
+    // the core's B). PolytopePlane: o1 is the plane. Mesh: o1 is the trimesh (the other geom in
+    // polytope1, or kind1 and round1, and pose1; the trimesh's pose in pose2).
     bool flip = false;
     const Polytope* polytope1 = nullptr;  // o1's (PolytopePlane: the non-plane geom's), geom frame
     const Polytope* polytope2 = nullptr;  // o2's (Polytopes only)

@@ -14,7 +14,10 @@ bool isGdcontactPair(int class1, int class2) {
     return pair(dCylinderClass, dBoxClass) || pair(dCylinderClass, dConvexClass) ||
            pair(dCylinderClass, dPlaneClass) || pair(dCylinderClass, dCylinderClass) ||
            pair(dCapsuleClass, dBoxClass) || pair(dCapsuleClass, dConvexClass) ||
-           pair(dCapsuleClass, dCylinderClass) || pair(dSphereClass, dConvexClass);
+           pair(dCapsuleClass, dCylinderClass) || pair(dSphereClass, dConvexClass) ||
+           // A polytope, a capsule or a cylinder on a triangle mesh (trimesh_geoms.hpp).
+           pair(dTriMeshClass, dBoxClass) || pair(dTriMeshClass, dConvexClass) ||
+           pair(dTriMeshClass, dCapsuleClass) || pair(dTriMeshClass, dCylinderClass);
 }
 
 void readRound(dGeomID geom, int geomClass, gdc::detail::ShapeKind& kind, gdc::detail::RoundShape& round) {

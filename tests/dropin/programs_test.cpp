@@ -76,10 +76,12 @@ TEST_CASE("a convex pile from rounded data stands inside its walls", "[dropin]")
 // (ODE_WITH_LIBCCD; Debian's is), and that pair is ODE's, not gdcontact's.
 bool odeCollidesConvexWithTrimesh() {
     dInitODE2(0);
-    static const dReal vertices[] = {-5, -5, 0, 5, -5, 0, 5, 5, 0, -5, 5, 0};
+    // float, as BuildSingle reads them, whatever dReal is (a dReal array read as floats is garbage
+    // in a double-precision ODE, and the probe then answered "no contacts" for the wrong reason).
+    static const float vertices[] = {-5, -5, 0, 5, -5, 0, 5, 5, 0, -5, 5, 0};
     static const dTriIndex indices[] = {0, 1, 2, 0, 2, 3};
     dTriMeshDataID data = dGeomTriMeshDataCreate();
-    dGeomTriMeshDataBuildSingle(data, vertices, 3 * sizeof(dReal), 4, indices, 6, 3 * sizeof(dTriIndex));
+    dGeomTriMeshDataBuildSingle(data, vertices, 3 * sizeof(float), 4, indices, 6, 3 * sizeof(dTriIndex));
     dGeomTriMeshDataPreprocess2(data, 1U << dTRIDATAPREPROCESS_BUILD_FACE_ANGLES, nullptr);  // as terrain.cpp
     dGeomID mesh = dCreateTriMesh(0, data, nullptr, nullptr, nullptr);
     const dReal corners[] = {-0.5, -0.5, -0.5, 0.5, -0.5, -0.5, -0.5, 0.5, -0.5, 0.5, 0.5, -0.5,
