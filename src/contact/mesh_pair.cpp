@@ -18,11 +18,17 @@ namespace {
 
 using namespace detail;  // the stages' internals this file composes
 
-// Whether the triangle's Gauss-map feature along `outward` (the mesh's frame, from the triangle
-// towards the shape, not within the tolerance of the face normal) is an active edge, or a vertex
-// with an active edge: an inactive one — between coplanar or concave triangles — is no feature of
-// the surface, only of how it was cut into triangles.
-bool featureIsActive(const TriangleMesh& mesh, int t, const Vec3& outward, double sine) {
+// Whether the growth distance's normal `outward` (the mesh's frame, from triangle t towards the
+// shape, not within the tolerance of the face normal) is a normal the surface has there: the
+// triangle's Gauss-map feature along it is an active edge and the normal lies on the edge's arc of
+// the surface's normals (between the two faces' normals; any that leans out over a boundary edge),
+// or a vertex both of whose edges in the triangle are active (a corner of the rim, a peak). Not
+// otherwise: an inactive edge, between coplanar or concave triangles, is no feature of the surface,
+// only of how it was cut into triangles; a vertex with an inactive edge lies on a straight ridge
+// or a flat region's rim, where the surface's normals are an edge's or the face's; and a normal
+// beyond a ridge's arc (a prism's side) leans over a face the surface does not have. The triangle
+// then answers with its face's normal (Jolt's rule for inactive edges, with the arc).
+bool keepsGrowthNormal(const TriangleMesh& mesh, int t, const Vec3& outward, double sine) {
     const std::array<int, 3>& corners = mesh.triangle(t);
     const std::vector<Vec3>& v = mesh.vertices();
     int top = 0;
@@ -36,8 +42,16 @@ bool featureIsActive(const TriangleMesh& mesh, int t, const Vec3& outward, doubl
         const double off = std::abs(outward.dot(along));
         if (off <= straightest) straightest = off, edge = e;
     }
-    if (edge >= 0) return mesh.edgeActive(t, edge);
-    return mesh.edgeActive(t, top) || mesh.edgeActive(t, (top + 2) % 3);
+    if (edge < 0) return mesh.edgeActive(t, top) && mesh.edgeActive(t, (top + 2) % 3);
+    if (!mesh.edgeActive(t, edge)) return false;
+    const int u = mesh.neighbour(t, edge);
+    if (u < 0) return true;
+    // On the arc from n_t to n_u (both unit, the normal all but perpendicular to the edge): no
+    // farther from either than they are from each other, to rounding. A normal beyond n_u is within
+    // the tolerance of u's face or past it: that face, not this edge, is the surface's feature.
+    const Vec3 &nt = mesh.triangleNormal(t), &nu = mesh.triangleNormal(u);
+    const double between = nt.dot(nu);
+    return outward.dot(nt) >= between - 1e-9 && outward.dot(nu) >= between - 1e-9;
 }
 
 // Which edges of triangle t are seams: inactive, and the neighbour's normal the same to 1e-12, so
@@ -197,7 +211,10 @@ void collide(const ShapeRef& shapeA, const Pose& poseA, const TriangleMesh& mesh
     for (int t : triangles) {
         const Vec3& n = mesh.triangleNormal(t);
         const double aboveFace = n.dot(centre - mesh.vertices()[mesh.triangle(t)[0]]);
-        if (aboveFace > reach || aboveFace < -body.radius) continue;  // wholly in front (beyond the margin) or behind
+        // Wholly in front beyond the margin; or the shape's centre behind the face: a one-sided
+        // surface has nothing there (a body poking through a floor from below is not pushed up
+        // through it).
+        if (aboveFace > reach || aboveFace < 0) continue;
         // The face's normal wherever the triangle's feature is its face or an inactive edge or vertex:
         // then the mesh answers as the plane of its face would, clipped to the triangle. A triangle
         // none of whose edges is active (inside a flat region) has no other feature: the growth
@@ -209,7 +226,7 @@ void collide(const ShapeRef& shapeA, const Pose& poseA, const TriangleMesh& mesh
             if (manifold.empty()) continue;
             const Vec3 outward = -(poseMesh.rotation.transpose() * manifold.normal);  // triangle → A
             const double cosineToFace = outward.dot(n);
-            alongFace = cosineToFace >= cosine || !featureIsActive(mesh, t, outward, sine);
+            alongFace = cosineToFace >= cosine || !keepsGrowthNormal(mesh, t, outward, sine);
             // An active edge's or vertex's normal out of the triangle's back or sides: the shape is
             // behind the surface there (or beside its boundary), where a one-sided mesh has nothing.
             if (!alongFace && !(cosineToFace > 1e-9)) continue;
