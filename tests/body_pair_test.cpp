@@ -50,21 +50,7 @@ double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x
 double hullArea(const std::vector<BodyPairContact>& contacts, const std::vector<int>& chosen) {
     std::vector<Vec2> p;
     for (int i : chosen) p.push_back(contacts[i].position.head<2>());
-    std::sort(p.begin(), p.end(), [](const Vec2& a, const Vec2& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
-    if (p.size() < 3) return 0.0;
-    std::vector<Vec2> h(2 * p.size());
-    int k = 0;
-    for (std::size_t i = 0; i < p.size(); ++i) {
-        while (k >= 2 && cross2(h[k - 1] - h[k - 2], p[i] - h[k - 2]) <= 0) --k;
-        h[k++] = p[i];
-    }
-    for (int i = static_cast<int>(p.size()) - 2, lower = k + 1; i >= 0; --i) {
-        while (k >= lower && cross2(h[k - 1] - h[k - 2], p[i] - h[k - 2]) <= 0) --k;
-        h[k++] = p[i];
-    }
-    double area = 0;
-    for (int i = 0; i + 1 < k; ++i) area += 0.5 * cross2(h[i], h[i + 1]);
-    return area;
+    return gdc::testing::convexHullArea(p);
 }
 
 bool insideHull(const std::vector<BodyPairContact>& contacts, const std::vector<int>& chosen, const Vec2& q) {

@@ -71,6 +71,61 @@ bool sameAlong(const Vec3& x, const Vec3& y, const Vec3& up, double tolerance) {
     return (apart - apart.dot(up) * up).squaredNorm() <= tolerance * tolerance;
 }
 
+// Whether the edge e of triangle t into its neighbour u folds up: u's far corner lies in front of
+// t's plane. An inactive edge is concave or within the angular tolerance of flat either way; only a
+// concave one has the solid below it as the union of the two sides.
+bool concave(const TriangleMesh& mesh, int t, int e, int u) {
+    const std::vector<Vec3>& v = mesh.vertices();
+    const Vec3& a = v[mesh.triangle(t)[e]];
+    const Vec3& b = v[mesh.triangle(t)[(e + 1) % 3]];
+    double farthest = 0;
+    for (int corner : mesh.triangle(u)) {
+        const Vec3& w = v[corner];
+        if (w != a && w != b) farthest = mesh.triangleNormal(t).dot(w - a);
+    }
+    return farthest > 0;
+}
+
+// The triangle's face (corners in A's frame, counter-clockwise seen along `up`) with each edge into a
+// valley — inactive, not a seam: the neighbour rises beyond it — moved out in the face's plane by
+// as much as a shape `depth` below the plane can need. Below a valley the solid is the union of
+// what lies below each side's plane, so a point below this face's plane just beyond such an edge is
+// inside it; clipped at the edge, a shape sunk into the valley has points below both sides that
+// project onto neither (each side's normal leans away from the other), and no contact. A point
+// `depth` below the edge projects along this face's normal at most depth·tan(fold) beyond it (fold:
+// the angle between the two normals), so the edge moves out by that (a fold over 80° by 80°'s): a
+// strip that stays below the neighbour, never a reach over terrain beyond it. No triangle with a
+// corner under 2° is widened: its moved edges would meet far off.
+AnyFeature reachingOverValleys(const AnyFeature& face, const TriangleMesh& mesh, int t, const std::array<bool, 3>& seam,
+                               const Vec3& up, double depth, double tolerance) {
+    if (!(depth > 0)) return face;
+    double push[3];
+    bool any = false;
+    for (int e = 0; e < 3; ++e) {
+        push[e] = 0;
+        const int u = mesh.neighbour(t, e);
+        if (seam[e] || mesh.edgeActive(t, e) || u < 0 || !concave(mesh, t, e, u)) continue;
+        const double fold = std::acos(std::clamp(mesh.triangleNormal(t).dot(mesh.triangleNormal(u)), -1.0, 1.0));
+        push[e] = depth * std::tan(std::min(fold, 1.4)) + tolerance;
+        any = true;
+    }
+    if (!any) return face;
+    const SmallVector<Vec3, 16>& corners = face.geometry.points;
+    Vec3 outward[3];  // each edge's outward normal in the face's plane
+    for (int e = 0; e < 3; ++e) outward[e] = (corners[(e + 1) % 3] - corners[e]).cross(up).normalized();
+    AnyFeature widened = face;
+    for (int k = 0; k < 3; ++k) {
+        // Corner k where edge k − 1 and edge k meet, each line moved out by its push: x in the plane
+        // with x·m₁ = d₁, x·m₂ = d₂.
+        const int before = (k + 2) % 3;
+        const double g = outward[before].dot(outward[k]), determinant = 1 - g * g;
+        if (determinant < 1e-3) return face;
+        const double a = (push[before] - g * push[k]) / determinant, b = (push[k] - g * push[before]) / determinant;
+        widened.geometry.points[k] = corners[k] + a * outward[before] + b * outward[k];
+    }
+    return widened;
+}
+
 // The plane's points (A's feature lifted onto a plane) for the last plane asked: the triangles of
 // a flat region share it, up to rounding in their normals and offsets.
 struct PlanePoints {
@@ -131,7 +186,9 @@ void appendAlongFace(const AnyFeature& feature, const ShapeBody& body, const Tri
         return;
     }
     const std::size_t first = points.size();
-    intersect(face, points);
+    double deepest = -INFINITY;  // how far A reaches below the face's plane: its plane points' depth
+    for (const LiftedPoint& point : scratch) deepest = std::max(deepest, point.depth);
+    intersect(reachingOverValleys(face, mesh, t, seam, up, deepest, tolerance), points);
     auto onSeam = [&](const Vec3& x) {
         for (int e = 0; e < 3; ++e)
             if (seam[e] && std::abs(beyondEdge(x, e)) <= tolerance) return true;
@@ -142,9 +199,17 @@ void appendAlongFace(const AnyFeature& feature, const ShapeBody& body, const Tri
             if (sameAlong(x, point.position, up, tolerance)) return true;
         return false;
     };
+    // Beyond two edges is beyond a corner: over triangles that meet this one at a vertex only, where
+    // nothing says the surface is above this face's plane (the widened corners of two valley edges).
+    auto beyondCorner = [&](const Vec3& x) {
+        int beyond = 0;
+        for (int e = 0; e < 3; ++e) beyond += beyondEdge(x, e) < -tolerance;
+        return beyond > 1;
+    };
     std::size_t kept = first;
     for (std::size_t i = first; i < points.size(); ++i)
-        if (!onSeam(points[i].position) || planePoint(points[i].position)) points[kept++] = points[i];
+        if ((!onSeam(points[i].position) || planePoint(points[i].position)) && !beyondCorner(points[i].position))
+            points[kept++] = points[i];
     points.setSize(kept);
 }
 
@@ -211,10 +276,13 @@ void collide(const ShapeRef& shapeA, const Pose& poseA, const TriangleMesh& mesh
     for (int t : triangles) {
         const Vec3& n = mesh.triangleNormal(t);
         const double aboveFace = n.dot(centre - mesh.vertices()[mesh.triangle(t)[0]]);
-        // Wholly in front beyond the margin; or the shape's centre behind the face: a one-sided
-        // surface has nothing there (a body poking through a floor from below is not pushed up
-        // through it).
-        if (aboveFace > reach || aboveFace < 0) continue;
+        // Wholly in front beyond the margin, or wholly behind. A shape sunk through the face from
+        // the front but not through it — its centre behind, part of it still in front — is pushed
+        // back out to the front: that is a body that went halfway through a terrain in one step (a
+        // rock falling at 9 m/s moves 9 cm a step), and letting it go would drop it out of the
+        // world (docs/meshes.md measures it). A shape that approaches the face from behind is
+        // pushed through it alike: a one-sided mesh cannot tell the two apart.
+        if (aboveFace > reach || aboveFace < -body.radius) continue;
         // The face's normal wherever the triangle's feature is its face or an inactive edge or vertex:
         // then the mesh answers as the plane of its face would, clipped to the triangle. A triangle
         // none of whose edges is active (inside a flat region) has no other feature: the growth
@@ -226,10 +294,11 @@ void collide(const ShapeRef& shapeA, const Pose& poseA, const TriangleMesh& mesh
             if (manifold.empty()) continue;
             const Vec3 outward = -(poseMesh.rotation.transpose() * manifold.normal);  // triangle → A
             const double cosineToFace = outward.dot(n);
-            alongFace = cosineToFace >= cosine || !keepsGrowthNormal(mesh, t, outward, sine);
-            // An active edge's or vertex's normal out of the triangle's back or sides: the shape is
-            // behind the surface there (or beside its boundary), where a one-sided mesh has nothing.
-            if (!alongFace && !(cosineToFace > 1e-9)) continue;
+            // A normal out of the triangle's back or sides is no normal of a one-sided surface
+            // either: the shape is sunk deep at a ridge (the prism's growth leaves by its back) or
+            // lies beside the rim, and the face's normal answers (nothing where the shape is not
+            // over the face).
+            alongFace = cosineToFace >= cosine || !(cosineToFace > 1e-9) || !keepsGrowthNormal(mesh, t, outward, sine);
         }
         if (alongFace) {
             const Vec3 down = -(meshInA.rotation * n);  // A's frame, from A towards the face

@@ -78,25 +78,7 @@ std::vector<dContactGeom> collideDirect(dGeomID o1, dGeomID o2, int maxContacts 
 double supportArea(const std::vector<dContactGeom>& contacts) {
     std::vector<Vec2> points;
     for (const auto& c : contacts) points.emplace_back(c.pos[0], c.pos[1]);
-    std::sort(points.begin(), points.end(),
-              [](const Vec2& a, const Vec2& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
-    if (points.size() < 3) return 0;
-    auto cross = [](const Vec2& o, const Vec2& a, const Vec2& b) {
-        return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
-    };
-    std::vector<Vec2> hull(2 * points.size());
-    std::size_t k = 0;
-    for (std::size_t i = 0; i < points.size(); ++i) {  // Andrew's monotone chain
-        while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
-        hull[k++] = points[i];
-    }
-    for (std::size_t i = points.size() - 1, t = k + 1; i-- > 0;) {
-        while (k >= t && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
-        hull[k++] = points[i];
-    }
-    double area = 0;
-    for (std::size_t i = 0; i + 1 < k; ++i) area += hull[i].x() * hull[i + 1].y() - hull[i + 1].x() * hull[i].y();
-    return 0.5 * std::abs(area);
+    return gdc::testing::convexHullArea(points);
 }
 
 std::string describe(const std::vector<dContactGeom>& contacts) {
