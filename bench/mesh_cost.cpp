@@ -1,9 +1,12 @@
 // The cost of a body resting on a triangle mesh against the mesh's size (issue 34): a box and an
 // 8-vertex hull on flat grids of 2·N² triangles, at cycled jittered poses, ODE's own box–trimesh and
-// convex–trimesh (dCollide, no install() in this process) and gdcontact's core query interleaved
-// pose by pose; the median of each contender's time per call over repeated rounds, and the ratio.
+// convex–trimesh (dCollide, no install() in this process), gdcontact through the ODE adapter
+// (gdc::ode::collide on the same geoms: the mesh cache's lookup and check, the contacts written as
+// ODE's) and gdcontact's core query interleaved pose by pose; the median of each contender's time
+// per call over repeated rounds, and the ratios to ODE's.
 //   bench_mesh_cost [ROUNDS]
 #include <gdcontact/gdcontact.hpp>
+#include <gdcontact/ode.hpp>
 #include <ode/ode.h>
 
 #include <algorithm>
@@ -54,8 +57,9 @@ int main(int argc, char** argv) {
     std::vector<gdc::Vec3> hullPoints;
     for (int i = 0; i < 8; ++i) hullPoints.push_back({0.5 * unit(rng), 0.5 * unit(rng), 0.5 * unit(rng)});
     const gdc::Polytope hull = gdc::Polytope::fromPoints(hullPoints);
-    std::printf("| triangles | body | ODE (ns/call) | gdcontact core (ns/call) | ratio | contacts ODE / gdcontact |\n");
-    std::printf("|---:|---|---:|---:|---:|---|\n");
+    std::printf("| triangles | body | ODE (ns/call) | gdcontact adapter (ns/call) | core (ns/call) | ratio to ODE: "
+                "adapter / core | contacts ODE / adapter (core) |\n");
+    std::printf("|---:|---|---:|---:|---:|---|---|\n");
     for (int n : {4, 16, 64, 256}) {
         const Grid g = grid(n, cell);
         const gdc::TriangleMesh mesh(g.vertices, g.triangles);
@@ -72,19 +76,12 @@ int main(int argc, char** argv) {
         for (int kind = 0; kind < 2; ++kind) {
             const gdc::Polytope& body = kind == 0 ? box : hull;
             dGeomID odeBody = nullptr;
-            std::vector<dReal> hullPlanes, hullVertices;
-            std::vector<unsigned> hullPolygons;
+            std::vector<dReal> hullVertices;
             if (kind == 0) {
                 odeBody = dCreateBox(nullptr, 1, 1, 1);
-            } else {
-                for (const auto& f : body.faces()) hullPlanes.insert(hullPlanes.end(), {f.normal.x(), f.normal.y(), f.normal.z(), f.offset});
+            } else {  // a convex geom both ODE and the adapter know (gdc::ode::createConvex)
                 for (const gdc::Vec3& v : body.vertices()) hullVertices.insert(hullVertices.end(), {v.x(), v.y(), v.z()});
-                for (const auto& f : body.faces()) {
-                    hullPolygons.push_back(static_cast<unsigned>(f.count));
-                    for (int k = 0; k < f.count; ++k) hullPolygons.push_back(static_cast<unsigned>(body.faceVertices()[f.first + k]));
-                }
-                odeBody = dCreateConvex(nullptr, hullPlanes.data(), static_cast<unsigned>(body.faces().size()),
-                                        hullVertices.data(), static_cast<unsigned>(body.vertices().size()), hullPolygons.data());
+                odeBody = gdc::ode::createConvex(nullptr, hullVertices.data(), static_cast<unsigned>(body.vertices().size()));
             }
             // 64 cycled poses resting 1–5 mm into the floor, turned about z and tilted a little,
             // within the middle of the grid.
@@ -100,12 +97,13 @@ int main(int argc, char** argv) {
                 pose.position.z() = -lowest - 0.003 + 0.002 * unit(rng);
                 poses.push_back(pose);
             }
-            std::vector<double> odeTimes, coreTimes;
+            std::vector<double> odeTimes, adapterTimes, coreTimes;
             std::vector<gdc::MeshContact> contacts;
-            dContactGeom odeContacts[64];
-            int odeCount = 0, coreCount = 0;
+            dContactGeom odeContacts[64], adapterContacts[64];
+            int odeCount = 0, adapterCount = 0, coreCount = 0;
+            const gdc::Settings settings;
             for (int round = 0; round < rounds; ++round) {
-                double odeTotal = 0, coreTotal = 0;
+                double odeTotal = 0, adapterTotal = 0, coreTotal = 0;
                 for (const gdc::Pose& pose : poses) {
                     dMatrix3 r;
                     for (int i = 0; i < 3; ++i)
@@ -116,18 +114,23 @@ int main(int argc, char** argv) {
                     const Clock::time_point t0 = Clock::now();
                     odeCount = dCollide(odeBody, floor, 64, odeContacts, sizeof(dContactGeom));
                     const Clock::time_point t1 = Clock::now();
-                    gdc::collide(body, pose, mesh, gdc::Pose{}, gdc::Settings{}, contacts);
+                    adapterCount = gdc::ode::collide(odeBody, floor, 64, adapterContacts, sizeof(dContactGeom), settings);
                     const Clock::time_point t2 = Clock::now();
+                    gdc::collide(body, pose, mesh, gdc::Pose{}, settings, contacts);
+                    const Clock::time_point t3 = Clock::now();
                     coreCount = static_cast<int>(contacts.size());
                     odeTotal += std::chrono::duration<double, std::nano>(t1 - t0).count();
-                    coreTotal += std::chrono::duration<double, std::nano>(t2 - t1).count();
+                    adapterTotal += std::chrono::duration<double, std::nano>(t2 - t1).count();
+                    coreTotal += std::chrono::duration<double, std::nano>(t3 - t2).count();
                 }
                 odeTimes.push_back(odeTotal / poses.size());
+                adapterTimes.push_back(adapterTotal / poses.size());
                 coreTimes.push_back(coreTotal / poses.size());
             }
-            const double odeNs = median(odeTimes), coreNs = median(coreTimes);
-            std::printf("| %d | %s | %.0f | %.0f | %.2f | %d / %d |\n", 2 * n * n, kind == 0 ? "box" : "8-vertex hull",
-                        odeNs, coreNs, coreNs / odeNs, odeCount, coreCount);
+            const double odeNs = median(odeTimes), adapterNs = median(adapterTimes), coreNs = median(coreTimes);
+            std::printf("| %d | %s | %.0f | %.0f | %.0f | %.2f / %.2f | %d / %d (core %d) |\n", 2 * n * n,
+                        kind == 0 ? "box" : "8-vertex hull", odeNs, adapterNs, coreNs, adapterNs / odeNs, coreNs / odeNs,
+                        odeCount, adapterCount, coreCount);
             dGeomDestroy(odeBody);
         }
         dGeomDestroy(floor);

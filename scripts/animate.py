@@ -28,7 +28,7 @@ METHOD_LABEL = {"gdc": "gdcontact", "tracking": "contact tracking", "ode": "ODE 
 # Which run of each scene to show: the one where the methods differ most. The brick wall with
 # dConvex bricks is the one ODE's own convex collider fails; with dBox bricks all three stand.
 ANIMATIONS = [("box_drop", "box"), ("tower", "box"), ("brick_wall", "convex"), ("composites", "box"),
-              ("barrels", "box")]
+              ("barrels", "box"), ("terrain", "box")]
 FRAME_RATE = 60.0  # the viewer's headless frames advance 1/60 s of simulated time each
 
 

@@ -1,6 +1,6 @@
 #include "scene.hpp"
 
-#include "scene_registry.hpp"
+#include "terrain_ground.hpp"
 
 #include <gdcontact/ode.hpp>
 #include <gdcontact/tracking.hpp>
@@ -110,10 +110,11 @@ double worldHeight(const Part& part, const Vec3& vertex) {
 /// What the collision pass needs to know about a geom, and the per-step scratch.
 struct Scene::Impl {
     struct GeomInfo {
-        std::shared_ptr<const Polytope> shape;  // null for the ground plane
+        std::shared_ptr<const Polytope> shape;  // null for the ground plane and a terrain
         bool isPlane = false;
         HalfSpace plane;
         std::uint64_t serial = 0;  // creation order: a pair's order must not depend on addresses
+        const TerrainGround* terrain = nullptr;  // set for a terrain (addTerrain)
     };
     std::uint64_t nextSerial = 0;
     struct Pair {
@@ -165,6 +166,8 @@ struct Scene::Impl {
     };
     std::vector<HeldPair> held;
     std::vector<dContactGeom> heldContacts;
+    // Terrains (addTerrain): destroyed with this Impl, after destroyWorld() destroyed their geoms.
+    std::vector<std::unique_ptr<TerrainGround>> terrains;
 };
 
 Scene::Scene(std::string name, const SceneOptions& options, const SolverSettings& defaults)
@@ -250,6 +253,17 @@ void Scene::addGroundPlane() {
     info.plane = HalfSpace{Vec3::UnitZ(), 0.0};
     info.serial = impl_->nextSerial++;
     impl_->geoms[plane] = info;
+}
+
+dGeomID Scene::addTerrain(std::vector<Vec3> vertices, std::vector<std::array<int, 3>> triangles) {
+    auto terrain = std::make_unique<TerrainGround>(space_, std::move(vertices), std::move(triangles));
+    staticGeoms_.push_back(terrain->geom());
+    Impl::GeomInfo info;
+    info.terrain = terrain.get();
+    info.serial = impl_->nextSerial++;
+    impl_->geoms[terrain->geom()] = info;
+    impl_->terrains.push_back(std::move(terrain));
+    return staticGeoms_.back();
 }
 
 Body& Scene::addBody(const std::string& name, const std::vector<PlacedPart>& parts, double density,
@@ -387,9 +401,11 @@ void Scene::collidePair(dGeomID o1, dGeomID o2) {
     const Impl::GeomInfo& g2 = info2->second;
     if (!wholeStepCollision_) {
         double overlap = 0.0;
-        if (g1.isPlane && !g2.isPlane) overlap = penetrationDepth(*g2.shape, poseOfGeom(o2), g1.plane);
+        if (g1.terrain && g2.shape) overlap = g1.terrain->penetration(*g2.shape, poseOfGeom(o2));
+        else if (g2.terrain && g1.shape) overlap = g2.terrain->penetration(*g1.shape, poseOfGeom(o1));
+        else if (g1.isPlane && !g2.isPlane) overlap = penetrationDepth(*g2.shape, poseOfGeom(o2), g1.plane);
         else if (g2.isPlane && !g1.isPlane) overlap = penetrationDepth(*g1.shape, poseOfGeom(o1), g2.plane);
-        else if (!g1.isPlane && !g2.isPlane) overlap = penetrationDepth(*g1.shape, poseOfGeom(o1), *g2.shape, poseOfGeom(o2));
+        else if (g1.shape && g2.shape) overlap = penetrationDepth(*g1.shape, poseOfGeom(o1), *g2.shape, poseOfGeom(o2));
         impl_->stepPenetration = std::max(impl_->stepPenetration, overlap - solver_.surfaceLayer);
     }
 
@@ -413,6 +429,10 @@ void Scene::collidePair(dGeomID o1, dGeomID o2) {
             count = dCollide(o1, o2, wanted, out, sizeof(dContactGeom));
             break;
         case Method::Tracking: {
+            if (g1.terrain || g2.terrain) {  // MPR needs convex shapes: ODE's trimesh colliders
+                count = dCollide(o1, o2, wanted, out, sizeof(dContactGeom));
+                break;
+            }
             auto proxyPose = [&](dGeomID plane, const HalfSpace& halfSpace, dGeomID other) {
                 auto [entry, created] = impl_->planeProxies.try_emplace({o1, o2});
                 if (created) {
@@ -678,29 +698,6 @@ void Scene::writeCsv(const std::string& path) const {
         file << '\n';
     }
     if (!file) throw std::runtime_error("error writing " + path);
-}
-
-std::vector<std::string> sceneNames() { return {"box_drop", "tower", "brick_wall", "composites", "big_world"}; }
-
-std::vector<std::string> extraSceneNames() { return {"barrels"}; }
-
-std::vector<std::string> allSceneNames() {
-    std::vector<std::string> names = sceneNames();
-    for (std::string& name : extraSceneNames()) names.push_back(std::move(name));
-    return names;
-}
-
-std::unique_ptr<Scene> makeScene(const std::string& name, const SceneOptions& options) {
-    std::unique_ptr<Scene> scene;
-    if (name == "box_drop") scene = makeBoxDrop(options);
-    else if (name == "tower") scene = makeTower(options);
-    else if (name == "brick_wall") scene = makeBrickWall(options);
-    else if (name == "composites") scene = makeComposites(options);
-    else if (name == "big_world") scene = makeBigWorld(options);
-    else if (name == "barrels") scene = makeBarrels(options);
-    else throw std::invalid_argument("unknown scene '" + name + "' (box_drop, tower, brick_wall, composites, big_world, barrels)");
-    scene->reset();
-    return scene;
 }
 
 }  // namespace gdc::scenes

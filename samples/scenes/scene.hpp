@@ -248,6 +248,13 @@ protected:
     /// The ground: the plane z = 0. (The tracking baseline only knows polytopes; it sees the plane
     /// as a 4 m box under the body, top face in the plane, fixed while their contact lasts.)
     void addGroundPlane();
+    /// A static triangle-mesh ground (dCreateTriMesh, identity pose): `vertices` in world
+    /// coordinates, each triangle counter-clockwise seen from its front, fronts up, a height field
+    /// (TerrainGround). The scene keeps the arrays ODE reads alive with the world. The geometric
+    /// penetration measure of a body against it is TerrainGround::penetration; the tracking
+    /// baseline (convex shapes only) leaves its pairs to ODE's trimesh colliders (dCollide), and
+    /// the gdcontact method takes the pairs gdc::ode::handles (box, convex, capsule, cylinder).
+    dGeomID addTerrain(std::vector<gdc::Vec3> vertices, std::vector<std::array<int, 3>> triangles);
     /// Declares the current poses as the rest poses; measures count from here.
     void markRest();
     Body* findBody(dBodyID body);
@@ -291,7 +298,8 @@ private:
 
 /// The paper's scenes and the big world, in the report's order.
 std::vector<std::string> sceneNames();
-/// Scenes makeScene() builds besides: "barrels" (ODE's cylinders and capsules, issue 33). Kept out
+/// Scenes makeScene() builds besides: "barrels" (ODE's cylinders and capsules, issue 33) and
+/// "terrain" (bodies on a triangle-mesh ground, issue 34). Kept out
 /// of sceneNames(), which the report runs and the scene tests pin, until the report has them.
 std::vector<std::string> extraSceneNames();
 /// Every name makeScene() accepts: sceneNames(), then extraSceneNames() (the viewer lists these).

@@ -11,5 +11,6 @@ std::unique_ptr<Scene> makeBrickWall(const SceneOptions& options);
 std::unique_ptr<Scene> makeComposites(const SceneOptions& options);
 std::unique_ptr<Scene> makeBigWorld(const SceneOptions& options);
 std::unique_ptr<Scene> makeBarrels(const SceneOptions& options);
+std::unique_ptr<Scene> makeTerrain(const SceneOptions& options);
 
 }  // namespace gdc::scenes

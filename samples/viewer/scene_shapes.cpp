@@ -26,6 +26,51 @@ std::shared_ptr<const ConvexMesh> roundMesh(int geomClass, double radius, double
                                                                          : ConvexMesh::capsule(radius, length));
 }
 
+/// A trimesh's triangles in its own frame, each a face. ODE 0.16 gives them only in world
+/// coordinates (dGeomTriMeshGetTriangle), so they are mapped back with the geom's pose; vertices
+/// are not shared between faces (every triangle's edges are outlined). Null when it has none.
+std::shared_ptr<const ConvexMesh> triangleSurface(dGeomID geom, int count) {
+    if (count <= 0) return nullptr;
+    const Pose pose = poseFromOde(dGeomGetPosition(geom), dGeomGetRotation(geom));
+    std::vector<Vec3> vertices;
+    std::vector<std::vector<int>> loops;
+    for (int t = 0; t < count; ++t) {
+        dVector3 corner[3];
+        dGeomTriMeshGetTriangle(geom, t, &corner[0], &corner[1], &corner[2]);
+        const int first = int(vertices.size());
+        for (const dVector3& c : corner) vertices.push_back(pose.applyInverse(Vec3(c[0], c[1], c[2])));
+        if (!((vertices[first + 1] - vertices[first]).cross(vertices[first + 2] - vertices[first]).norm() > 0.0)) {
+            vertices.resize(first);  // a degenerate triangle: nothing to draw
+            continue;
+        }
+        loops.push_back({first, first + 1, first + 2});
+    }
+    if (loops.empty()) return nullptr;
+    return std::make_shared<const ConvexMesh>(ConvexMesh::fromFaces(std::move(vertices), loops));
+}
+
+/// Where a world ray first meets the front of one of a surface's triangles (Möller–Trumbore).
+std::optional<double> intersectSurface(const Ray& worldRay, const ConvexMesh& mesh, const Pose& pose) {
+    const Vec3 origin = pose.applyInverse(worldRay.origin);
+    const Vec3 direction = pose.rotation.transpose() * worldRay.direction;
+    std::optional<double> best;
+    for (const auto& face : mesh.faces) {
+        if (face.normal.dot(direction) >= 0.0) continue;  // from behind or edge-on
+        const Vec3 &a = mesh.vertices[face.loop[0]], &b = mesh.vertices[face.loop[1]], &c = mesh.vertices[face.loop[2]];
+        const Vec3 ab = b - a, ac = c - a, p = direction.cross(ac);
+        const double determinant = ab.dot(p);
+        if (determinant == 0.0) continue;
+        const Vec3 s = origin - a;
+        const double u = s.dot(p) / determinant;
+        const Vec3 q = s.cross(ab);
+        const double v = direction.dot(q) / determinant;
+        const double t = ac.dot(q) / determinant;
+        if (u < 0.0 || v < 0.0 || u + v > 1.0 || t < 0.0) continue;
+        if (!best || t < *best) best = t;
+    }
+    return best;
+}
+
 }  // namespace
 
 void SceneShapes::clear() {
@@ -85,6 +130,7 @@ void SceneShapes::add(dGeomID placed, dGeomID geom, const Pose& parent, bool nes
     shape.placed = placed;
     shape.body = dGeomGetBody(placed);
     shape.mesh = std::move(mesh);
+    shape.surface = dGeomGetClass(geom) == dTriMeshClass;
     // A geom inside a transform stores its pose relative to the transform; any other placeable
     // geom reports its world pose, body offset included.
     const Pose own = poseFromOde(dGeomGetPosition(geom), dGeomGetRotation(geom));
@@ -128,6 +174,19 @@ std::shared_ptr<const ConvexMesh> SceneShapes::meshOf(dGeomID geom) {
         }
         return cached.mesh;
     }
+    if (type == dTriMeshClass) {
+        const int count = dGeomTriMeshGetTriangleCount(geom);
+        const Vec3 size(count, 0.0, 0.0);
+        if (!cached.mesh || cached.geomClass != type || cached.size != size) {
+            auto mesh = triangleSurface(geom, count);
+            if (!mesh) {
+                cache_.erase(geom);
+                return nullptr;
+            }
+            cached = Cached{size, type, nullptr, std::move(mesh)};
+        }
+        return cached.mesh;
+    }
     cache_.erase(geom);
     return nullptr;
 }
@@ -136,7 +195,8 @@ std::optional<PickHit> SceneShapes::pick(const Ray& ray) const {
     std::optional<PickHit> best;
     for (std::size_t i = 0; i < shapes_.size(); ++i) {
         const DrawShape& shape = shapes_[i];
-        const auto t = shape.isPlane() ? intersectHalfSpace(ray, shape.planeNormal, shape.planeOffset)
+        const auto t = shape.isPlane()   ? intersectHalfSpace(ray, shape.planeNormal, shape.planeOffset)
+                       : shape.surface ? intersectSurface(ray, *shape.mesh, shape.pose)
                                        : intersect(ray, *shape.mesh, shape.pose);
         if (t && (!best || *t < best->distance)) best = PickHit{int(i), *t, ray.at(*t)};
     }

@@ -1,5 +1,6 @@
 // Everything drawable and pickable in an ODE space: boxes, convex hulls (through the gdcontact
-// adapter), cylinders and capsules (drawn and picked as fine tessellations), planes, geoms inside a dGeomTransform and geoms with a body offset, in nested spaces.
+// adapter), cylinders and capsules (drawn and picked as fine tessellations), triangle meshes
+// (terrain), planes, geoms inside a dGeomTransform and geoms with a body offset, in nested spaces.
 #pragma once
 
 #include "convex_mesh.hpp"
@@ -19,6 +20,9 @@ struct DrawShape {
     dGeomID placed = nullptr; // the geom that sits in the space (the transform, or `geom` itself)
     dBodyID body = nullptr;   // null for static geometry
     std::shared_ptr<const ConvexMesh> mesh;  // null for a plane
+    /// A trimesh (dCreateTriMesh): `mesh` holds its triangles as faces, an open surface rather than
+    /// a convex solid, so it is picked triangle by triangle (front faces only).
+    bool surface = false;
     Pose pose;                // world pose of the mesh
     Vec3 planeNormal = Vec3::UnitZ();  // plane only: the solid is {x : normal·x ≤ offset}
     double planeOffset = 0.0;
@@ -39,8 +43,8 @@ public:
     void setPolytopeLookup(PolytopeLookup lookup) { lookup_ = std::move(lookup); }
 
     /// Re-read every geom of `space` (recursively): poses always, meshes only for geoms not seen
-    /// before or whose dimensions changed. Geoms of classes the viewer cannot draw (spheres,
-    /// trimeshes...) are counted in skipped().
+    /// before or whose dimensions changed (a trimesh: whose triangle count changed). Geoms of
+    /// classes the viewer cannot draw (spheres, heightfields...) are counted in skipped().
     void update(dSpaceID space);
     /// Forget all cached meshes (after the scene was rebuilt: ODE may reuse geom addresses).
     void clear();
@@ -56,7 +60,7 @@ public:
 
 private:
     struct Cached {
-        Vec3 size = Vec3::Zero();  // boxes: the lengths; cylinders, capsules: radius, length, 0
+        Vec3 size = Vec3::Zero();  // boxes: the lengths; cylinders, capsules: radius, length, 0; trimeshes: triangle count, 0, 0
         int geomClass = -1;        // rebuild when the class or the size changes (ODE reuses addresses)
         std::shared_ptr<const Polytope> source;  // for convex geoms: the polytope it was built from
         std::shared_ptr<const ConvexMesh> mesh;
