@@ -7,6 +7,7 @@
 // The geometric penetration measure and the tracking baseline see each round part as its
 // tessellation (scenes::makeCylinderPart / makeCapsulePart), whose vertices lie on the surface:
 // they judge the real shape up to the tessellation's sagitta (under 1 % of the radius).
+#include "resting_scene.hpp"
 #include "scene_registry.hpp"
 
 #include <array>
@@ -29,50 +30,11 @@ Pose placed(const Vec3& position, const Mat3& rotation = Mat3::Identity()) {
     return pose;
 }
 
-class Barrels final : public Scene {
+class Barrels final : public RestingScene {
 public:
-    explicit Barrels(const SceneOptions& options) : Scene("barrels", options, solverDefaults()) {}
-
-    double duration() const override { return 6.0; }
-
-    Outcome outcome() const override {
-        Outcome result;
-        if (exploded()) {
-            result.text = "a barrel left the world";
-            return result;
-        }
-        const Measures& last = measures();
-        const Summary summary = this->summary();
-        // "Held": still, and no body has sunk or slid by more than a millimetre since rest.
-        const bool still = last.speed < kStillSpeed;
-        const bool held = summary.maxSag < kHeld && summary.maxDrift < kHeld;
-        result.success = atRest() && still && held;
-        char text[240];
-        std::snprintf(text, sizeof text,
-                      "barrels %s: speed %.3g m/s, sag %.3g m, drift %.3g m, penetration %.3g m since rest",
-                      result.success ? "rest" : "do NOT rest", last.speed, summary.maxSag, summary.maxDrift,
-                      summary.maxPenetration);
-        result.text = text;
-        result.values = {{"final_speed", last.speed},
-                         {"max_sag", summary.maxSag},
-                         {"max_drift", summary.maxDrift},
-                         {"max_penetration", summary.maxPenetration}};
-        return result;
-    }
+    explicit Barrels(const SceneOptions& options) : RestingScene("barrels", options) {}
 
 private:
-    static constexpr double kSettleTime = 2.0;  // s, docs/measures.md: skip the first 2 s
-    static constexpr double kStillSpeed = 5e-3; // m/s
-    static constexpr double kHeld = 1e-3;       // m
-
-    static SolverSettings solverDefaults() {
-        // The exact LCP stepper, as in the box drop: what the bodies do is the contacts' doing.
-        SolverSettings solver;
-        solver.stepper = SolverSettings::Stepper::World;
-        solver.dt = 0.01;
-        return solver;
-    }
-
     void build() override {
         addGroundPlane();
         const Vec3 crateHalf(0.5, 0.35, 0.2);
@@ -114,10 +76,6 @@ private:
         addBody("capsule", {makeCapsulePart(radius, length)}, 1000.0, placed(Vec3(-0.15, -0.2, 0.4 + kGap + low),
                                                                                lying(Vec3::UnitX())),
                 colour);
-    }
-
-    void script() override {
-        if (!atRest() && time() >= kSettleTime - 1e-9) markRest();
     }
 };
 

@@ -20,6 +20,7 @@
 // The geometric penetration measure is TerrainGround::penetration (the deepest body vertex below
 // the triangle under it, or terrain vertex inside a body); round parts are measured as their
 // tessellations (up to its sagitta, under 1 % of the radius), as in the barrels scene.
+#include "resting_scene.hpp"
 #include "scene_registry.hpp"
 
 #include <algorithm>
@@ -69,50 +70,11 @@ double lowest(const PlacedPart& part, const Mat3& rotation, const Vec3& n) {
     return low;
 }
 
-class Terrain final : public Scene {
+class Terrain final : public RestingScene {
 public:
-    explicit Terrain(const SceneOptions& options) : Scene("terrain", options, solverDefaults()) {}
-
-    double duration() const override { return 6.0; }
-
-    Outcome outcome() const override {
-        Outcome result;
-        if (exploded()) {
-            result.text = "a body left the world";
-            return result;
-        }
-        const Measures& last = measures();
-        const Summary summary = this->summary();
-        // "Rest": still, and no body has sunk or slid by more than a millimetre since rest.
-        const bool still = last.speed < kStillSpeed;
-        const bool held = summary.maxSag < kHeld && summary.maxDrift < kHeld;
-        result.success = atRest() && still && held;
-        char text[240];
-        std::snprintf(text, sizeof text,
-                      "terrain %s: speed %.3g m/s, sag %.3g m, drift %.3g m, penetration %.3g m since rest",
-                      result.success ? "rest" : "do NOT rest", last.speed, summary.maxSag, summary.maxDrift,
-                      summary.maxPenetration);
-        result.text = text;
-        result.values = {{"final_speed", last.speed},
-                         {"max_sag", summary.maxSag},
-                         {"max_drift", summary.maxDrift},
-                         {"max_penetration", summary.maxPenetration}};
-        return result;
-    }
+    explicit Terrain(const SceneOptions& options) : RestingScene("terrain", options) {}
 
 private:
-    static constexpr double kSettleTime = 2.0;  // s, docs/measures.md: skip the first 2 s
-    static constexpr double kStillSpeed = 5e-3; // m/s
-    static constexpr double kHeld = 1e-3;       // m
-
-    static SolverSettings solverDefaults() {
-        // The exact LCP stepper, as in the barrels scene: what the bodies do is the contacts' doing.
-        SolverSettings solver;
-        solver.stepper = SolverSettings::Stepper::World;
-        solver.dt = 0.01;
-        return solver;
-    }
-
     void build() override {
         addGround();
         addBoxes();
@@ -190,10 +152,6 @@ private:
         place("lying barrel", makeCylinderPart(0.15, 0.4), 700.0, -1.7, 0.3, alongY, 0.0, {0.8f, 0.55f, 0.2f});
         place("capsule", makeCapsulePart(0.07, 0.45), 1000.0, -2.5, 0.3, alongY, 0.0, {0.35f, 0.6f, 0.85f});
         place("wheel", makeCylinderPart(0.22, 0.1), 900.0, 1.8, 2.0, alongX, 0.0, {0.25f, 0.25f, 0.28f});
-    }
-
-    void script() override {
-        if (!atRest() && time() >= kSettleTime - 1e-9) markRest();
     }
 };
 

@@ -523,6 +523,13 @@ def main(argv=None):
         "measured (exact zeros are not drawn); a spike there is a kick — look for the run's ODE message under "
         "*Messages from ODE*."))
 
+    # The columns of the scenes of bodies at rest (samples/scenes/resting_scene.hpp: barrels, terrain).
+    RESTING_COLUMNS = [("verdict", verdict_cell),
+                       ("speed at the end (m/s)", lambda s: fmt(s["values"].get("final_speed"))),
+                       ("sag since rest (m)", lambda s: fmt(s["values"].get("max_sag"))),
+                       ("drift since rest (m)", lambda s: fmt(s["values"].get("max_drift"))),
+                       ("penetration (m)", lambda s: fmt(s["values"].get("max_penetration")))] + TIMING_COLUMNS
+
     # ---- barrels (beyond the paper: ODE's curved shapes)
     out.extend(scene_section(
         runs, results, "barrels", "Barrels: cylinders and capsules (beyond the paper)",
@@ -532,10 +539,7 @@ def main(argv=None):
         "and spheres\"); gdcontact the cap's disc, the side's segment, the capsule's two ends. Contact tracking "
         "sees each curved part as its tessellation. The check: everything still, nothing sunk or slid more than "
         "1 mm since rest.",
-        [("verdict", verdict_cell), ("speed at the end (m/s)", lambda s: fmt(s["values"].get("final_speed"))),
-         ("sag since rest (m)", lambda s: fmt(s["values"].get("max_sag"))),
-         ("drift since rest (m)", lambda s: fmt(s["values"].get("max_drift"))),
-         ("penetration (m)", lambda s: fmt(s["values"].get("max_penetration")))] + TIMING_COLUMNS))
+        RESTING_COLUMNS))
 
     # ---- terrain (beyond the paper: a triangle mesh under boxes, hulls and curved shapes)
     out.extend(scene_section(
@@ -547,10 +551,7 @@ def main(argv=None):
         "own trimesh colliders do under ODE native, and under contact tracking too (MPR needs two convex "
         "shapes: that run is ODE's). The check: everything still, nothing sunk or slid more than 1 mm since "
         "rest.",
-        [("verdict", verdict_cell), ("speed at the end (m/s)", lambda s: fmt(s["values"].get("final_speed"))),
-         ("sag since rest (m)", lambda s: fmt(s["values"].get("max_sag"))),
-         ("drift since rest (m)", lambda s: fmt(s["values"].get("max_drift"))),
-         ("penetration (m)", lambda s: fmt(s["values"].get("max_penetration")))] + TIMING_COLUMNS))
+        RESTING_COLUMNS))
 
     # ---- details
     out.append("## Details: every measure of every run\n")
