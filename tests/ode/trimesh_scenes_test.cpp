@@ -528,9 +528,23 @@ TEST_CASE("a plain dCreateConvex on a trimesh keeps ODE's own contacts after ins
         (installed ? after : before) = collideThroughOde(convex, floor.geom, 8);
         dGeomDestroy(convex);
     }
-    INFO(gdc::ode::detail::describeOdeColliders());
-    // ODE's contacts, at most Settings::maxContacts (6) of them after install().
+    INFO("ODE " << dGetConfiguration() << "; " << gdc::ode::detail::describeOdeColliders());
+    // As for the other pairs of a plain convex (convex_test.cpp): an ODE whose convex–trimesh gives
+    // nothing (built without libccd) gives nothing after install() either; one whose collider the
+    // adapter cannot reach (a static ODE) gives none, with its one message; otherwise ODE's
+    // contacts, at most Settings::maxContacts (6) of them.
+    using gdc::ode::detail::OdeFallback;
+    const OdeFallback fallback = gdc::ode::detail::odeColliders().convexTrimesh.fallback;
+    if (fallback == OdeFallback::OdeGivesNone) {
+        CHECK(before.empty());
+        CHECK(after.empty());
+        return;
+    }
     REQUIRE(!before.empty());
+    if (fallback == OdeFallback::Unreachable) {
+        CHECK(after.empty());
+        return;
+    }
     REQUIRE(after.size() == std::min<std::size_t>(before.size(), 6));
     for (std::size_t i = 0; i < after.size(); ++i) {
         CHECK(after[i].depth == before[i].depth);
