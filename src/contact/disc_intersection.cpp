@@ -347,4 +347,73 @@ void intersectAnyFeatures(const AnyFeature& a, const AnyFeature& b, const Vec3& 
     }
 }
 
+void liftOntoPlane(const AnyFeature& a, const Vec3& normal, double planeOffset, double tolerance,
+                   double minimumDepth, bool spanRegion, int arcPointsPerTurn, int wholeRimPoints, LiftedPoints& out) {
+    Vec3 u, v;
+    planeBasis(normal, u, v);
+    auto depthOf = [&](const Vec3& p) { return planeOffset + normal.dot(p); };
+    const double keepDepth = minimumDepth - tolerance;
+    const double toleranceSquared = tolerance * tolerance;
+    // A point of A moved half its depth back along n: midway between A and the plane.
+    auto add = [&](const Vec3& p, bool mayRepeat) {
+        const double depth = depthOf(p);
+        if (!(depth >= keepDepth) || !std::isfinite(depth)) return;
+        const Vec3 position = p - 0.5 * depth * normal;
+        const Vec2 planar(position.dot(u), position.dot(v));
+        if (mayRepeat)
+            for (const LiftedPoint& point : out)
+                if ((point.planar - planar).squaredNorm() <= toleranceSquared) return;
+        out.push_back({position, depth, planar, 0, 0});
+    };
+    if (!a.isDisc) {
+        const auto& points = a.geometry.points;
+        for (const Vec3& p : points) add(p, false);
+        if (!spanRegion || points.size() < 2) return;
+        // Where an edge runs from contact into a gap, the point where it crosses minimumDepth.
+        const std::size_t n = points.size(), edges = n == 2 ? 1 : n;
+        for (std::size_t i = 0; i < edges; ++i) {
+            const Vec3 &p = points[i], &q = points[(i + 1) % n];
+            const double dp = depthOf(p) - minimumDepth, dq = depthOf(q) - minimumDepth;
+            if ((dp < 0) != (dq < 0)) add(p + dp / (dp - dq) * (q - p), true);
+        }
+        return;
+    }
+    // The rim c + cos t·e1 + sin t·e2, t = 0 at its deepest point (as Rim places it): its depth is
+    // d0 + amplitude·cos t.
+    const Disc& disc = a.disc;
+    Vec3 dir2 = disc.axis.cross(normal);
+    const double length = dir2.norm();
+    Vec3 dir1;
+    if (length > 1e-12) {
+        dir2 /= length;
+        dir1 = dir2.cross(disc.axis);
+    } else {
+        dir1 = (disc.reference - disc.reference.dot(disc.axis) * disc.axis).normalized();
+        dir2 = disc.axis.cross(dir1);
+    }
+    const Vec3 e1 = disc.radius * dir1, e2 = disc.radius * dir2;
+    const int whole = std::max(wholeRimPoints, 3);
+    const double d0 = depthOf(disc.centre), amplitude = normal.dot(e1);
+    if (spanRegion && amplitude > 0 && std::abs(minimumDepth - d0) < amplitude) {
+        // The rim crosses minimumDepth at ±spread: those two points and the arc between them
+        // through the deepest point, spread as an arc of intersectAnyFeatures is.
+        const double spread = std::acos((minimumDepth - d0) / amplitude);
+        auto rimAt = [&](double t) { return Vec3(disc.centre + std::cos(t) * e1 + std::sin(t) * e2); };
+        add(rimAt(spread), true);
+        add(rimAt(-spread), true);
+        const double step = kTwoPi / std::max(arcPointsPerTurn, 3);
+        const int pieces = std::max(whole - 1, static_cast<int>(std::ceil(2 * spread / step - 1e-9)));
+        for (int j = 1; j < pieces; ++j) add(rimAt(-spread + 2 * spread * j / pieces), true);
+        return;
+    }
+    // The whole rim: a regular polygon from the deepest point, turning (cos, sin) a step at a time.
+    const double stepCos = std::cos(kTwoPi / whole), stepSin = std::sin(kTwoPi / whole);
+    double c = 1, s = 0;
+    for (int k = 0; k < whole; ++k) {
+        add(disc.centre + c * e1 + s * e2, false);
+        const double next = c * stepCos - s * stepSin;
+        s = s * stepCos + c * stepSin, c = next;
+    }
+}
+
 }  // namespace gdc::detail

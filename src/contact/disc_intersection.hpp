@@ -27,4 +27,14 @@ void intersectAnyFeatures(const AnyFeature& a, const AnyFeature& b, const Vec3& 
                           double minimumDepth, bool spanRegion, int arcPointsPerTurn, int wholeRimPoints,
                           LiftedPoints& out);
 
+/// Stage 3 against a half-space: its feature is its whole plane, so the contact region is A's
+/// feature itself where it is deep enough, and each of its points is lifted straight onto the plane
+/// (no clip against a stand-in polygon). `planeOffset` places the plane: a point p of A is
+/// `planeOffset + normal·p` deep. The points are what intersectAnyFeatures gives against any polygon
+/// that holds A's shadow: a disc's whole rim as `wholeRimPoints` evenly from its deepest point,
+/// dropped where not in contact; a segment's or a point's own points; with `spanRegion` the rim's or
+/// the segment's crossings of `minimumDepth` and the arc between them.
+void liftOntoPlane(const AnyFeature& a, const Vec3& normal, double planeOffset, double tolerance,
+                   double minimumDepth, bool spanRegion, int arcPointsPerTurn, int wholeRimPoints, LiftedPoints& out);
+
 }  // namespace gdc::detail

@@ -56,7 +56,8 @@ void mirrored(const Shape& a, const Pose& poseA, const Shape& b, const Pose& pos
 }
 
 // One table per order a caller may ask for: rows A's kind, columns B's (ShapeKind's order). Every
-// pair with a curved kind is the curved cell's; a half-space as A is the mirror of its pair.
+// pair with a curved kind is the curved cells' (on a half-space, its own: nothing to cast); a
+// half-space as A is the mirror of its pair.
 template <ImportanceOrder order>
 constexpr PairCells kCells = {{
     /* Box */ {boxWithBox<order>, polytopes<order>, collideRoundInto, collideRoundInto, collideRoundInto,
@@ -64,13 +65,14 @@ constexpr PairCells kCells = {{
     /* Hull */ {polytopes<order>, polytopes<order>, collideRoundInto, collideRoundInto, collideRoundInto,
                 polytopeOnHalfSpace<order>},
     /* Sphere */ {collideRoundInto, collideRoundInto, collideRoundInto, collideRoundInto, collideRoundInto,
-                  collideRoundInto},
+                  collideRoundOnPlaneInto},
     /* Capsule */ {collideRoundInto, collideRoundInto, collideRoundInto, collideRoundInto, collideRoundInto,
-                   collideRoundInto},
+                   collideRoundOnPlaneInto},
     /* Cylinder */ {collideRoundInto, collideRoundInto, collideRoundInto, collideRoundInto, collideRoundInto,
-                    collideRoundInto},
+                    collideRoundOnPlaneInto},
     /* HalfSpace */ {mirrored<polytopeOnHalfSpace<order>>, mirrored<polytopeOnHalfSpace<order>>,
-                     mirrored<collideRoundInto>, mirrored<collideRoundInto>, mirrored<collideRoundInto>, noCell},
+                     mirrored<collideRoundOnPlaneInto>, mirrored<collideRoundOnPlaneInto>,
+                     mirrored<collideRoundOnPlaneInto>, noCell},
 }};
 
 }  // namespace

@@ -1,6 +1,7 @@
 // The paper's three stages for every pair with a curved kind (a sphere, a capsule, a cylinder) on
 // either side, against any body or a half-space: the pair table's cells for those kinds
-// (round_pair.hpp). A curved kind gives the method what a polytope gives it — a support point and a
+// (round_pair.hpp). On a half-space the stages are short: the plane's normal is the contact normal,
+// and A's feature for it, lifted onto the plane, is the contact region. A curved kind gives the method what a polytope gives it — a support point and a
 // Gauss-map feature (shapes/round_shape.hpp) — so the stages are the general ones on support
 // functions: stage 1 the growth distance by the GJK ray cast on (A − p_A) − (B − p_B), refined among
 // the features' planes (a face, a cap) where one of them needs less translation; stage 2 one feature
@@ -56,7 +57,44 @@ Vec3 fallbackNormal(const ShapeBody& a, const ShapeBody& b) {
     return best;
 }
 
+// The points written out: in lift order where the caller orders by depth itself (the ODE adapter)
+// and the ranking could only have ordered them (emitInLiftOrder), else ranked.
+void emitRound(const LiftedPoints& kept, const Vec3& normal, const Pose& poseA, const PairQuery& query, double tolerance,
+               const Vec3* centroids, int centroidCount, Manifold& out) {
+    const Settings& settings = query.settings;
+    const bool ordered = query.order == ImportanceOrder::AmongEqualDepths &&
+                         static_cast<int>(kept.size()) <= settings.maxContacts &&
+                         emitInLiftOrder(kept, normal, poseA, settings, out);
+    if (!ordered) emitManifold(kept, normal, poseA, settings, tolerance, centroids, centroidCount, out);
+}
+
+int wholeRimPoints(const Settings& settings) { return std::min(settings.rimPointsPerTurn, settings.maxContacts); }
+
 }  // namespace
+
+void collideRoundOnPlaneInto(const Shape& shapeA, const Pose& poseA, const Shape& shapeB, const Pose&,
+                             const PairQuery& query, Manifold& out) {
+    const Settings& settings = query.settings;
+    clearManifold(out);
+    const AngularTolerance angular =
+        query.angularTolerance ? *query.angularTolerance : AngularTolerance(settings.angularTolerance);
+    const ShapeBody a(shapeA, Pose{}, settings.bruteForceSupportLimit);
+    const double tolerance = 1e-9 * a.radius;
+    const double minimumDepth = -settings.margin;
+    // Stage 1 on a plane: its normal is exact; the overlap is the depth of A's support.
+    const PlaneInA plane = planeInA(*shapeB.halfSpace, poseA);
+    const Vec3 normal = -plane.m;
+    if (plane.depthOf(a.support(normal)) < minimumDepth - tolerance) return;
+    // Stage 2: A's feature (the plane's is the plane). Stage 3: that feature lifted onto the plane.
+    const AnyFeature featureA = a.feature(normal, angular);
+    LiftedPoints kept;
+    liftOntoPlane(featureA, normal, plane.offset, tolerance, minimumDepth, settings.spanContactRegion,
+                  settings.rimPointsPerTurn, wholeRimPoints(settings), kept);
+    if (kept.empty()) return;
+    emitRound(kept, normal, poseA, query, tolerance, &a.centre, 1, out);
+    out.featureA = featureA.id;
+    out.featureB = {FeatureType::Face, 0};
+}
 
 void collideRoundInto(const Shape& shapeA, const Pose& poseA, const Shape& shapeB, const Pose& poseB,
                       const PairQuery& query, Manifold& out) {
@@ -65,89 +103,73 @@ void collideRoundInto(const Shape& shapeA, const Pose& poseA, const Shape& shape
     const AngularTolerance angular =
         query.angularTolerance ? *query.angularTolerance : AngularTolerance(settings.angularTolerance);
     const ShapeBody a(shapeA, Pose{}, settings.bruteForceSupportLimit);
-    const bool onPlane = shapeB.kind == ShapeKind::HalfSpace;
-    // On a plane B is not a body: `b` is then a stand-in never asked for a support or a feature.
-    const ShapeBody b(onPlane ? shapeA : shapeB, onPlane ? Pose{} : poseA.relative(poseB), settings.bruteForceSupportLimit);
-    const double size = a.radius + (onPlane ? 0.0 : b.radius);
+    const ShapeBody b(shapeB, poseA.relative(poseB), settings.bruteForceSupportLimit);
+    const double size = a.radius + b.radius;
     const double tolerance = 1e-9 * size;
     const double minimumDepth = -settings.margin;
     auto overlapAlong = [&](const Vec3& n) { return n.dot(a.support(n)) - n.dot(b.support(-n)); };
 
+    const Vec3 offset = b.centre - a.centre;
+    const double distance = offset.norm();
+    if (distance > size + settings.margin + tolerance) return;  // the bounding spheres are apart
+    // Stage 1: the growth distance, the exit of the ray along p_B − p_A through C. A curved
+    // surface is met only in the limit: each support adds a point, and the cast stops within
+    // its tolerance of the surface.
+    // A sphere's or a capsule's core and radius: the cast on the cores, grown by the radii.
     Vec3 normal;
-    double normalOverlap;
-    AnyFeature featureA, featureB;
-    PlaneInA plane{};
-    if (onPlane) {
-        // Stage 1 on a plane: its normal is exact; the overlap is the depth of A's support.
-        plane = planeInA(*shapeB.halfSpace, poseA);
-        normal = -plane.m;
-        normalOverlap = plane.depthOf(a.support(normal));
+    bool found = false;
+    const double margin = a.margin() + b.margin();
+    if (distance > 1e-12 * size) {
+        const Vec3 w = offset / distance;
+        SupportLog log;
+        auto support = [&](const Vec3& d) {
+            const Vec3 onA = a.coreSupport(d), onB = b.coreSupport(-d);
+            const int id = log.add(onA, onB);
+            return SupportPoint{(onA - a.centre) - (onB - b.centre), id, id};
+        };
+        const double start = w.dot(support(w).point) + margin + 0.5 * size;
+        const RayCastResult cast = gjkRayCast(support, start * w, -w, settings.rayCastTolerance * size,
+                                              settings.maxRayCastIterations, margin);
+        if (cast.hit && start - cast.lambda > 0 && cast.normal.squaredNorm() > 0 && cast.normal.allFinite())
+            normal = cast.normal.normalized(), found = true;
+    }
+    if (!found) normal = fallbackNormal(a, b);
+    double normalOverlap = overlapAlong(normal);
+    if (normalOverlap < minimumDepth - tolerance) return;
+    // Stage 2, and the normal among the features' planes: a face or a cap along which the pair
+    // overlaps less is the contact normal (a cap resting on a face: the face's, exactly).
+    AnyFeature featureA = a.feature(normal, angular);
+    AnyFeature featureB = b.feature(-normal, angular);
+    Vec3 best = normal;
+    double bestOverlap = normalOverlap;
+    for (const Vec3& candidate : {planeNormalOf(featureA), Vec3(-planeNormalOf(featureB))}) {
+        if (!(candidate.squaredNorm() > 0)) continue;
+        const double overlap = overlapAlong(candidate);
+        if (overlap < bestOverlap - tolerance) best = candidate, bestOverlap = overlap;
+    }
+    if (best != normal) {
+        normal = best, normalOverlap = bestOverlap;
         if (normalOverlap < minimumDepth - tolerance) return;
-        featureA = a.feature(normal, angular);
-        featureB = planeFeature(plane, a);
-    } else {
-        const Vec3 offset = b.centre - a.centre;
-        const double distance = offset.norm();
-        if (distance > size + settings.margin + tolerance) return;  // the bounding spheres are apart
-        // Stage 1: the growth distance, the exit of the ray along p_B − p_A through C. A curved
-        // surface is met only in the limit: each support adds a point, and the cast stops within
-        // its tolerance of the surface.
-        // A sphere's or a capsule's core and radius: the cast on the cores, grown by the radii.
-        bool found = false;
-        const double margin = a.margin() + b.margin();
-        if (distance > 1e-12 * size) {
-            const Vec3 w = offset / distance;
-            SupportLog log;
-            auto support = [&](const Vec3& d) {
-                const Vec3 onA = a.coreSupport(d), onB = b.coreSupport(-d);
-                const int id = log.add(onA, onB);
-                return SupportPoint{(onA - a.centre) - (onB - b.centre), id, id};
-            };
-            const double start = w.dot(support(w).point) + margin + 0.5 * size;
-            const RayCastResult cast = gjkRayCast(support, start * w, -w, settings.rayCastTolerance * size,
-                                                  settings.maxRayCastIterations, margin);
-            if (cast.hit && start - cast.lambda > 0 && cast.normal.squaredNorm() > 0 && cast.normal.allFinite())
-                normal = cast.normal.normalized(), found = true;
-        }
-        if (!found) normal = fallbackNormal(a, b);
-        normalOverlap = overlapAlong(normal);
-        if (normalOverlap < minimumDepth - tolerance) return;
-        // Stage 2, and the normal among the features' planes: a face or a cap along which the pair
-        // overlaps less is the contact normal (a cap resting on a face: the face's, exactly).
         featureA = a.feature(normal, angular);
         featureB = b.feature(-normal, angular);
-        Vec3 best = normal;
-        double bestOverlap = normalOverlap;
-        for (const Vec3& candidate : {planeNormalOf(featureA), Vec3(-planeNormalOf(featureB))}) {
-            if (!(candidate.squaredNorm() > 0)) continue;
-            const double overlap = overlapAlong(candidate);
-            if (overlap < bestOverlap - tolerance) best = candidate, bestOverlap = overlap;
-        }
-        if (best != normal) {
-            normal = best, normalOverlap = bestOverlap;
-            if (normalOverlap < minimumDepth - tolerance) return;
-            featureA = a.feature(normal, angular);
-            featureB = b.feature(-normal, angular);
-        }
     }
 
     // Stage 3: the features' intersection in the contact plane, each point with its own depth.
     LiftedPoints kept;
     intersectAnyFeatures(featureA, featureB, normal, tolerance, minimumDepth, settings.spanContactRegion,
-                         settings.rimPointsPerTurn, std::min(settings.rimPointsPerTurn, settings.maxContacts), kept);
+                         settings.rimPointsPerTurn, wholeRimPoints(settings), kept);
     double deepest = -INFINITY;
     for (const LiftedPoint& point : kept) deepest = std::max(deepest, point.depth);
     // The depth confirmation: where the intersection falls short of the supports' overlap along n
     // (the supports do not face each other across the contact plane — an overhang), the exact
     // depth along n is where the ray along n leaves A − B; its touching points are a contact.
-    if (!onPlane && deepest < normalOverlap - 1e-7 * size) {
+    if (deepest < normalOverlap - 1e-7 * size) {
         SupportLog log;
         auto support = [&](const Vec3& d) {
             const Vec3 onA = a.coreSupport(d), onB = b.coreSupport(-d);
             const int id = log.add(onA, onB);
             return SupportPoint{onA - onB, id, id};
         };
-        const double margin = a.margin() + b.margin();
         const double start = normal.dot(support(normal).point) + margin + 0.5 * size;
         const RayCastResult cast = gjkRayCast(support, start * normal, -normal, settings.rayCastTolerance * size,
                                               settings.maxRayCastIterations, margin);
@@ -176,13 +198,8 @@ void collideRoundInto(const Shape& shapeA, const Pose& poseA, const Shape& shape
         }
     }
     if (kept.empty()) return;
-    // A caller that orders the points by depth itself (the ODE adapter) gets them in lift order
-    // where the ranking could only have ordered them (emitInLiftOrder).
-    const bool ordered = query.order == ImportanceOrder::AmongEqualDepths &&
-                         static_cast<int>(kept.size()) <= settings.maxContacts &&
-                         emitInLiftOrder(kept, normal, poseA, settings, out);
     const Vec3 centroids[2] = {a.centre, b.centre};
-    if (!ordered) emitManifold(kept, normal, poseA, settings, tolerance, centroids, onPlane ? 1 : 2, out);
+    emitRound(kept, normal, poseA, query, tolerance, centroids, 2, out);
     out.featureA = featureA.id;
     out.featureB = featureB.id;
 }

@@ -7,10 +7,15 @@
 
 namespace gdc::detail {
 
-/// The pair's contacts written into `out`, A or B (or both) a curved kind; B may be a half-space
-/// (A may not: the table mirrors that pair). The points are ranked in full whatever the query's
-/// order (a permission the table's callers give, not a demand). Poses finite (collidePair checks).
+/// The pair's contacts written into `out`, A or B (or both) a curved kind, neither a half-space.
+/// The points are ranked in full unless the query's order lets them be in lift order (emitRound).
+/// Poses finite (collidePair checks).
 void collideRoundInto(const Shape& a, const Pose& poseA, const Shape& b, const Pose& poseB, const PairQuery& query,
                       Manifold& out);
+/// A curved kind A on the half-space B (the table mirrors the other order): A's feature for the
+/// plane's normal lifted onto the plane (liftOntoPlane). `poseB` is unused: a half-space is placed
+/// in the world.
+void collideRoundOnPlaneInto(const Shape& a, const Pose& poseA, const Shape& b, const Pose& poseB,
+                             const PairQuery& query, Manifold& out);
 
 }  // namespace gdc::detail

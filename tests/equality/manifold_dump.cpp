@@ -9,7 +9,9 @@
 // standard library make the same stream. Pair types: box–box of seven kinds (resting face, face
 // near the angular tolerance, edge–edge, vertex–face, deep, nearly touching, separated/random),
 // box–plane, hull–plane (small hulls and one above the vertex loop's limit), hull–hull (small hulls,
-// a tessellated sphere whose faces come with caps, an elongated prism) and box–hull. Settings vary
+// a tessellated sphere whose faces come with caps, an elongated prism), box–hull, and the curved
+// kinds on a plane (sphere, capsule, cylinder: a cap level with the plane, tilted within and beyond
+// the angular tolerance, a side lying). Settings vary
 // per pose (margin, contact budget, spanning the region, angular tolerance). compare exits 1 when a
 // count or a feature differs, or when a value differs by more than 1e-9 of the pair's size.
 #include <gdcontact/collide.hpp>
@@ -84,10 +86,11 @@ bool read(std::FILE* in, Record& r) {
 }
 
 // Pair types in the file: box–box kinds 0..6, then these.
-enum { BoxPlane = KindCount, HullPlane, HullHull, BoxHull, TypeCount };
+enum { BoxPlane = KindCount, HullPlane, HullHull, BoxHull, SpherePlane, CapsulePlane, CylinderPlane, TypeCount };
 std::string typeName(int type) {
     if (type < KindCount) return std::string("box-box ") + kKindNames[type];
-    const char* names[] = {"box-plane", "hull-plane", "hull-hull", "box-hull"};
+    const char* names[] = {"box-plane", "hull-plane", "hull-hull", "box-hull", "sphere-plane", "capsule-plane",
+                           "cylinder-plane"};
     return names[type - KindCount];
 }
 
@@ -212,6 +215,36 @@ int dump(const char* path) {
         const Pose poseB{world.rotation * relative.rotation, world.apply(relative.position)};
         write(out, BoxHull, a.radius() + b.radius(), collide(a, world, b, poseB, settings));
     }
+    // The curved kinds on a plane: 50 000 each. The plane's normal along the shape's axis (a cap or
+    // an end level with it), tilted a little (within and beyond the angular tolerance), across the
+    // axis (a side lying) or at random; its offset from the shape's lowest point up to 2 % of its
+    // size either way.
+    for (int kind = 0; kind < 3; ++kind)
+        for (int trial = 0; trial < 50000; ++trial) {
+            const double radius = 0.05 + unit(random), length = 0.05 + 2 * unit(random);
+            const ShapeRef shape = kind == 0   ? ShapeRef(Sphere{radius})
+                                   : kind == 1 ? ShapeRef(Capsule{radius, length})
+                                               : ShapeRef(Cylinder{radius, length});
+            const double size = kind == 0 ? radius : kind == 1 ? radius + 0.5 * length : std::hypot(radius, 0.5 * length);
+            const Settings settings = randomSettings(random, size);
+            const Pose pose = randomPose();
+            const double pick = unit(random);
+            const Vec3 axis = pose.rotation.col(2), across = pose.rotation.col(0);
+            const Vec3 normal = pick < 0.3   ? Vec3(axis)
+                                : pick < 0.6 ? Vec3(tilt(random, 0.1) * axis)
+                                : pick < 0.8 ? Vec3(tilt(random, 0.02) * across)
+                                             : Vec3(randomRotation(random) * Vec3::UnitZ());
+            // The shape's lowest point along the plane's normal (the solid is on its −normal side):
+            // the shape's support along −normal.
+            const Vec3 local = pose.rotation.transpose() * -normal;
+            const double radial = std::hypot(local.x(), local.y());
+            const Vec3 axial(0, 0, kind == 0 ? 0.0 : (local.z() >= 0 ? 0.5 * length : -0.5 * length));
+            const Vec3 reach = kind == 2 ? Vec3(radial > 0 ? Vec3(radius * local.x() / radial, radius * local.y() / radial, 0)
+                                                           : Vec3(radius, 0, 0)) + axial
+                                         : Vec3(axial + radius * local);
+            const double offset = normal.dot(pose.apply(reach)) + size * 0.02 * symmetric(random);
+            write(out, SpherePlane + kind, size, collide(shape, pose, HalfSpace{normal, offset}, Pose{}, settings));
+        }
     std::fclose(out);
     return 0;
 }
