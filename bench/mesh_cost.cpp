@@ -3,8 +3,9 @@
 // convex–trimesh (dCollide, no install() in this process), gdcontact through the ODE adapter
 // (gdc::ode::collide on the same geoms: the mesh cache's lookup and check, the contacts written as
 // ODE's) and gdcontact's core query interleaved pose by pose; the median of each contender's time
-// per call over repeated rounds, and the ratios to ODE's.
-//   bench_mesh_cost [ROUNDS]
+// per call over repeated rounds, and the ratios to ODE's. With --csv FILE the rows are also written
+// there (`python3 -m gdcreport mesh-cost FILE` plots them: cost against the triangle count).
+//   bench_mesh_cost [--csv FILE] [ROUNDS]
 #include <gdcontact/gdcontact.hpp>
 #include <gdcontact/ode.hpp>
 #include <ode/ode.h>
@@ -12,6 +13,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
@@ -47,7 +49,17 @@ double median(std::vector<double> v) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    const int rounds = argc > 1 ? std::stoi(argv[1]) : 15;
+    int rounds = 15;
+    std::FILE* csv = nullptr;
+    for (int i = 1; i < argc; ++i) {
+        if (std::strcmp(argv[i], "--csv") == 0 && i + 1 < argc) {
+            csv = std::fopen(argv[++i], "w");
+            if (!csv) return std::perror(argv[i]), 2;
+        } else {
+            rounds = std::stoi(argv[i]);
+        }
+    }
+    if (csv) std::fprintf(csv, "triangles,body,ode_ns,adapter_ns,core_ns,ode_contacts,adapter_contacts,core_contacts\n");
     dInitODE2(0);
     const double cell = 0.5;  // a unit body spans about three cells: 10–20 triangles under it
     const gdc::Vec3 half(0.5, 0.5, 0.5);
@@ -60,7 +72,7 @@ int main(int argc, char** argv) {
     std::printf("| triangles | body | ODE (ns/call) | gdcontact adapter (ns/call) | core (ns/call) | ratio to ODE: "
                 "adapter / core | contacts ODE / adapter (core) |\n");
     std::printf("|---:|---|---:|---:|---:|---|---|\n");
-    for (int n : {4, 16, 64, 256}) {
+    for (int n : {4, 8, 16, 32, 64, 128, 256}) {
         const Grid g = grid(n, cell);
         const gdc::TriangleMesh mesh(g.vertices, g.triangles);
         dTriMeshDataID data = dGeomTriMeshDataCreate();
@@ -131,11 +143,15 @@ int main(int argc, char** argv) {
             std::printf("| %d | %s | %.0f | %.0f | %.0f | %.2f / %.2f | %d / %d (core %d) |\n", 2 * n * n,
                         kind == 0 ? "box" : "8-vertex hull", odeNs, adapterNs, coreNs, adapterNs / odeNs, coreNs / odeNs,
                         odeCount, adapterCount, coreCount);
+            if (csv)
+                std::fprintf(csv, "%d,%s,%.1f,%.1f,%.1f,%d,%d,%d\n", 2 * n * n, kind == 0 ? "box" : "hull8", odeNs,
+                             adapterNs, coreNs, odeCount, adapterCount, coreCount);
             dGeomDestroy(odeBody);
         }
         dGeomDestroy(floor);
         dGeomTriMeshDataDestroy(data);
     }
     dCloseODE();
+    if (csv) std::fclose(csv);
     return 0;
 }

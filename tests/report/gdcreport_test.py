@@ -145,7 +145,7 @@ class Commands(unittest.TestCase):
     def test_an_unknown_command_fails_and_lists_the_commands(self):
         result = self.run_command("no-such-report")
         self.assertEqual(result.returncode, 2)
-        for command in ("scenes", "check", "solver-seeds", "bench", "big", "budget"):
+        for command in ("scenes", "check", "solver-seeds", "bench", "big", "budget", "mesh-cost"):
             self.assertIn(command, result.stderr)
 
     def test_budget_pairs_seeds_with_the_sign_test(self):
@@ -166,6 +166,29 @@ class Commands(unittest.TestCase):
         self.assertEqual(len(rows), 1)  # the paired row: 6 seeds only the variant fails, none the other
         self.assertEqual(rows[0].split("|")[5:9], [" 10 ", " 6 ", " 0 ", f" {stats.sign_test(6, 0):.2g} "])
         self.assertIn("6/10 [", result.stdout)
+
+    def test_mesh_cost_plots_and_tabulates_every_row(self):
+        directory = tempfile.mkdtemp(prefix="gdcreport_mesh_cost_")
+        self.addCleanup(shutil.rmtree, directory, ignore_errors=True)
+        source = os.path.join(directory, "mesh_cost.csv")
+        # Made-up rows in bench_mesh_cost --csv's layout: the ratios are 600/400 and 300/400.
+        with open(source, "w") as f:
+            f.write("triangles,body,ode_ns,adapter_ns,core_ns,ode_contacts,adapter_contacts,core_contacts\n")
+            for triangles in (32, 512, 8192):
+                f.write(f"{triangles},box,400,600,300,18,4,4\n{triangles},hull8,200,100,50,1,1,1\n")
+        image = os.path.join(directory, "mesh_cost.png")
+        result = self.run_command("mesh-cost", source, "--plot", image)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        rows = [line for line in result.stdout.splitlines() if line.startswith("| ") and line[2].isdigit()]
+        self.assertEqual(len(rows), 6)
+        self.assertIn("| 512 | box | 400 | 600 | 300 | 1.50 / 0.75 | 18 / 4 (core 4) |", rows)
+        self.assertIn("| 8192 | 8-vertex hull | 200 | 100 | 50 | 0.50 / 0.25 | 1 / 1 (core 1) |", rows)
+        with open(image, "rb") as f:
+            self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+        empty = os.path.join(directory, "empty.csv")
+        with open(empty, "w") as f:
+            f.write("triangles,body,ode_ns,adapter_ns,core_ns,ode_contacts,adapter_contacts,core_contacts\n")
+        self.assertNotEqual(self.run_command("mesh-cost", empty, "--plot", image).returncode, 0)
 
 
 class Gifs(unittest.TestCase):
