@@ -159,9 +159,9 @@ int reduceBodyPairContacts(const BodyPairContact* contacts, int count, const Bod
         // sleep, or falling side by side) an exactly zero relative velocity too: its residual w
         // starts at exactly 0, a tie ODE's Dantzig pivoting cannot break — it stops with "LCP
         // internal error, s <= 0 (s=0)" and zeroes the remaining forces, and the island falls
-        // through the floor, every step again (the composites heap: docs/algorithm.md). The
-        // overlapping points carry the support; the touching one adds no force ODE would not get
-        // a step later, when it overlaps.
+        // through the floor, every step again (docs/benchmarks.md, "Touching points in the
+        // composites heap"). The overlapping points carry the support; the touching one adds no
+        // force ODE would not get a step later, when it overlaps.
         bool overlapping = false;
         for (int k = 0; k < n && !overlapping; ++k) overlapping = contacts[members[k]].depth > 0;
         if (overlapping) {

@@ -57,7 +57,8 @@ TEST_CASE("gdcontact stands in every seed of heavy-on-light (1:100) and the 1:20
 
 TEST_CASE("Where dBox's 10-stack falls asleep under dWorldStep, gdcontact's falls asleep no later") {
     // Issue 22, item 4, on the seeds whose stack settles at once (the later ones are chaotic: over
-    // 50 seeds gdcontact sleeps later in 15 and sooner in 13, docs/algorithm.md). 1 s of each run.
+    // 50 seeds gdcontact sleeps later in 15 and sooner in 13, docs/benchmarks.md, "Sleeping against
+    // dBox"). 1 s of each run.
     gdc::testing::OdeSession session;
     const ss::SceneSpec& spec = ss::findScene("stack10");
     const ss::Stepper world = ss::parseStepper("world");
@@ -168,9 +169,10 @@ TEST_CASE("identical states: two copies of a contender make the same contacts fr
 TEST_CASE("the composites heap under dWorldStep: no LCP internal error, no tunnelling, at ODE's default CFM") {
     // The seeds where ODE's Dantzig LCP stalled on a touching contact (depth exactly 0) between two
     // composites moving together ("LCP internal error, s <= 0", every step, the pair falling
-    // through the floor): budget 4 seeds 10 and 28 (1 and 3 messages), budget 3 seed 8 (tunnelled,
-    // 192 messages), budget 6 seed 2 (tunnelled, 152). The body-pair budget leaves touching points
-    // out where their cluster overlaps (src/contact/body_pair_reduction.cpp).
+    // through the floor): budget 4 seeds 10 and 28, budget 3 seed 8 (tunnelled), budget 6 seed 2
+    // (tunnelled); the counts of messages before and after: docs/ode.md, "Bodies of several geoms".
+    // The body-pair budget leaves touching points out where their cluster overlaps
+    // (src/contact/body_pair_reduction.cpp).
     gdc::testing::OdeSession session;
     ss::installMessageCounter();
     const ss::SceneSpec& spec = ss::findScene("composites");
