@@ -189,8 +189,8 @@ void discWithDisc(const Rim& rimA, const Rim& rimB, double slackA, double slackB
                   SmallVector<double, 16>& anglesA, SmallVector<double, 16>& anglesB, Keep keep,
                   SmallVector<Vec2, 32>& out) {
     constexpr int kSamples = 64;
-    auto outside = [&](double s) { return rimA.normalised(rimB.at(s)).squaredNorm() - 1; };
-    // outside(s) and its derivative, for Newton's steps inside a bracket.
+    // How far outside rim A rim B's point at s is (|normalised|² − 1), and its derivative, for
+    // Newton's steps inside a bracket.
     auto outsideWithSlope = [&](double s, double& slope) {
         const double c = std::cos(s), si = std::sin(s);
         const Vec2 q = rimA.normalised(rimB.centre + c * rimB.e1 + si * rimB.e2);
@@ -199,10 +199,20 @@ void discWithDisc(const Rim& rimA, const Rim& rimB, double slackA, double slackB
         return q.squaredNorm() - 1;
     };
     const std::size_t givenA = anglesA.size(), givenB = anglesB.size();
-    double previous = outside(0);
+    // The samples at 2πk/kSamples by turning (cos, sin) one step at a time (a rotation each, not a
+    // sincos): only the signs bracket the roots, which the steps below then solve exactly.
+    constexpr double kStepCos = 0.99518472667219688624, kStepSin = 0.098017140329560601994;  // of 2π/64
+    static_assert(kSamples == 64, "kStepCos and kStepSin are those of 2π/64");
+    auto outsideAt = [&](double c, double s) {
+        return rimA.normalised(rimB.centre + c * rimB.e1 + s * rimB.e2).squaredNorm() - 1;
+    };
+    double sampleCos = 1, sampleSin = 0;
+    double previous = outsideAt(sampleCos, sampleSin);
     for (int k = 1; k <= kSamples && anglesB.size() <= givenB + 8; ++k) {
         double low = kTwoPi * (k - 1) / kSamples, high = kTwoPi * k / kSamples;
-        const double value = outside(high);
+        const double turned = sampleCos * kStepCos - sampleSin * kStepSin;
+        sampleSin = sampleSin * kStepCos + sampleCos * kStepSin, sampleCos = turned;
+        const double value = outsideAt(sampleCos, sampleSin);
         if ((previous < 0) != (value < 0)) {
             // Newton's steps from the bracket's middle, each kept inside the bracket (a step that
             // leaves it bisects instead), until the step is below rounding.

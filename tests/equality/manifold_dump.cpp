@@ -11,7 +11,7 @@
 // box–plane, hull–plane (small hulls and one above the vertex loop's limit), hull–hull (small hulls,
 // a tessellated sphere whose faces come with caps, an elongated prism), box–hull, and the curved
 // kinds on a plane (sphere, capsule, cylinder: a cap level with the plane, tilted within and beyond
-// the angular tolerance, a side lying). Settings vary
+// the angular tolerance, a side lying) and cylinder–cylinder (caps stacked, crossing, at random). Settings vary
 // per pose (margin, contact budget, spanning the region, angular tolerance). compare exits 1 when a
 // count or a feature differs, or when a value differs by more than 1e-9 of the pair's size.
 #include <gdcontact/collide.hpp>
@@ -86,11 +86,14 @@ bool read(std::FILE* in, Record& r) {
 }
 
 // Pair types in the file: box–box kinds 0..6, then these.
-enum { BoxPlane = KindCount, HullPlane, HullHull, BoxHull, SpherePlane, CapsulePlane, CylinderPlane, TypeCount };
+enum {
+    BoxPlane = KindCount, HullPlane, HullHull, BoxHull, SpherePlane, CapsulePlane, CylinderPlane, CylinderCylinder,
+    TypeCount
+};
 std::string typeName(int type) {
     if (type < KindCount) return std::string("box-box ") + kKindNames[type];
-    const char* names[] = {"box-plane", "hull-plane", "hull-hull", "box-hull", "sphere-plane", "capsule-plane",
-                           "cylinder-plane"};
+    const char* names[] = {"box-plane",     "hull-plane",     "hull-hull",        "box-hull",
+                           "sphere-plane",  "capsule-plane",  "cylinder-plane",   "cylinder-cylinder"};
     return names[type - KindCount];
 }
 
@@ -245,6 +248,32 @@ int dump(const char* path) {
             const double offset = normal.dot(pose.apply(reach)) + size * 0.02 * symmetric(random);
             write(out, SpherePlane + kind, size, collide(shape, pose, HalfSpace{normal, offset}, Pose{}, settings));
         }
+    // Cylinder–cylinder: 50 000. B's cap on A's (coaxial within 0.05 rad, offset up to a radius), B
+    // lying across A's cap, or at random; touching along the axis or a random direction, then pushed
+    // in by up to 2 % of the size.
+    auto cylinderSupport = [](const Cylinder& c, const Pose& pose, const Vec3& d) {
+        const Vec3 local = pose.rotation.transpose() * d;
+        const double radial = std::hypot(local.x(), local.y());
+        const Vec3 side = radial > 0 ? Vec3(c.radius * local.x() / radial, c.radius * local.y() / radial, 0)
+                                     : Vec3(c.radius, 0, 0);
+        return pose.apply(side + Vec3(0, 0, local.z() >= 0 ? 0.5 * c.length : -0.5 * c.length));
+    };
+    for (int trial = 0; trial < 50000; ++trial) {
+        const Cylinder a{0.05 + unit(random), 0.05 + 2 * unit(random)}, b{0.05 + unit(random), 0.05 + 2 * unit(random)};
+        const double size = std::hypot(a.radius, 0.5 * a.length) + std::hypot(b.radius, 0.5 * b.length);
+        const Settings settings = randomSettings(random, size);
+        const Pose poseA = randomPose();
+        const double pick = unit(random);
+        const Mat3 rotationB = pick < 0.4   ? Mat3(poseA.rotation * tilt(random, 0.05))
+                               : pick < 0.7 ? Mat3(poseA.rotation * Eigen::AngleAxisd(M_PI / 2, Vec3::UnitX()) * tilt(random, 0.05))
+                                            : randomRotation(random);
+        const Vec3 up = pick < 0.7 ? Vec3(poseA.rotation.col(2)) : Vec3(randomRotation(random) * Vec3::UnitZ());
+        Pose poseB{rotationB, Vec3::Zero()};
+        const Vec3 sideways = a.radius * Vec3(symmetric(random), symmetric(random), symmetric(random));
+        poseB.position = cylinderSupport(a, poseA, up) - cylinderSupport(b, poseB, -up) + (sideways - sideways.dot(up) * up) -
+                         up * (size * 0.01 * (1 + symmetric(random)));
+        write(out, CylinderCylinder, size, collide(ShapeRef(a), poseA, ShapeRef(b), poseB, settings));
+    }
     std::fclose(out);
     return 0;
 }
