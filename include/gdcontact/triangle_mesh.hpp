@@ -28,6 +28,13 @@ struct Aabb {
     }
 };
 
+class TriangleMesh;
+namespace detail {
+struct MeshArrays;
+/// The mesh's arrays as gdcontact's own query reads them, unchecked (src/shapes/mesh_arrays.hpp).
+MeshArrays meshArrays(const TriangleMesh& mesh);
+}  // namespace detail
+
 /// A triangle mesh in its own frame, one-sided: a triangle's front is where its vertices run
 /// counter-clockwise (ODE's winding: the normal is (v1 − v0) × (v2 − v0)), and only a shape in front
 /// of a triangle touches it. Built once (neighbours across each edge, which edges are active, a
@@ -72,6 +79,7 @@ public:
 private:
     struct Data;
     std::unique_ptr<Data> data_;
+    friend detail::MeshArrays detail::meshArrays(const TriangleMesh& mesh);
 };
 
 /// One contact of a shape with a mesh.

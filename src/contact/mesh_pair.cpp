@@ -9,6 +9,7 @@
 #include "contact/disc_intersection.hpp"
 #include "contact/pair_table.hpp"
 #include "contact/shape_body.hpp"
+#include "shapes/mesh_arrays.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -28,9 +29,9 @@ using namespace detail;  // the stages' internals this file composes
 // or a flat region's rim, where the surface's normals are an edge's or the face's; and a normal
 // beyond a ridge's arc (a prism's side) leans over a face the surface does not have. The triangle
 // then answers with its face's normal (Jolt's rule for inactive edges, with the arc).
-bool keepsGrowthNormal(const TriangleMesh& mesh, int t, const Vec3& outward, double sine) {
+bool keepsGrowthNormal(const MeshArrays& mesh, int t, const Vec3& outward, double sine) {
     const std::array<int, 3>& corners = mesh.triangle(t);
-    const std::vector<Vec3>& v = mesh.vertices();
+    const Vec3* v = mesh.vertices();
     int top = 0;
     for (int i = 1; i < 3; ++i)
         if (outward.dot(v[corners[i]]) > outward.dot(v[corners[top]])) top = i;
@@ -56,7 +57,7 @@ bool keepsGrowthNormal(const TriangleMesh& mesh, int t, const Vec3& outward, dou
 
 // Which edges of triangle t are seams: inactive, and the neighbour's normal the same to 1e-12, so
 // that the two triangles' points join one cluster of the body-pair reduction.
-std::array<bool, 3> seamsOf(const TriangleMesh& mesh, int t) {
+std::array<bool, 3> seamsOf(const MeshArrays& mesh, int t) {
     std::array<bool, 3> seam{};
     for (int e = 0; e < 3; ++e) {
         const int u = mesh.neighbour(t, e);
@@ -74,8 +75,8 @@ bool sameAlong(const Vec3& x, const Vec3& y, const Vec3& up, double tolerance) {
 // Whether the edge e of triangle t into its neighbour u folds up: u's far corner lies in front of
 // t's plane. An inactive edge is concave or within the angular tolerance of flat either way; only a
 // concave one has the solid below it as the union of the two sides.
-bool concave(const TriangleMesh& mesh, int t, int e, int u) {
-    const std::vector<Vec3>& v = mesh.vertices();
+bool concave(const MeshArrays& mesh, int t, int e, int u) {
+    const Vec3* v = mesh.vertices();
     const Vec3& a = v[mesh.triangle(t)[e]];
     const Vec3& b = v[mesh.triangle(t)[(e + 1) % 3]];
     double farthest = 0;
@@ -96,7 +97,7 @@ bool concave(const TriangleMesh& mesh, int t, int e, int u) {
 // the angle between the two normals), so the edge moves out by that (a fold over 80° by 80°'s): a
 // strip that stays below the neighbour, never a reach over terrain beyond it. No triangle with a
 // corner under 2° is widened: its moved edges would meet far off.
-AnyFeature reachingOverValleys(const AnyFeature& face, const TriangleMesh& mesh, int t, const std::array<bool, 3>& seam,
+AnyFeature reachingOverValleys(const AnyFeature& face, const MeshArrays& mesh, int t, const std::array<bool, 3>& seam,
                                const Vec3& up, double depth, double tolerance) {
     if (!(depth > 0)) return face;
     double push[3];
@@ -147,37 +148,34 @@ struct PlanePoints {
 // the depth along a plane is affine, so it is never the deepest or an extreme of the area (and on
 // a cap a crossing would move the points as the seams pass under it, where the plane's stay put).
 // No depth confirmation: A's deepest point may lie over another triangle, which reports it.
-void appendAlongFace(const AnyFeature& feature, const ShapeBody& body, const TriangleMesh& mesh, const Pose& meshInA,
+void appendAlongFace(const AnyFeature& feature, const ShapeBody& body, const MeshArrays& mesh, const Pose& meshInA,
                      int t, const Settings& settings, PlanePoints& plane, LiftedPoints& points) {
     const Vec3 up = meshInA.rotation * mesh.triangleNormal(t);  // A's frame, from the face towards A
-    AnyFeature face;
-    face.geometry.type = FeatureType::Face;
-    double size = body.radius;
-    for (int corner : mesh.triangle(t)) {
-        face.geometry.points.push_back(meshInA.apply(mesh.vertices()[corner]));
-        size = std::max(size, (face.geometry.points[face.geometry.points.size() - 1] - face.geometry.points[0]).norm());
+    Vec3 corners[3];
+    double longest = 0;  // squared, from corner 0
+    for (int i = 0; i < 3; ++i) {
+        corners[i] = meshInA.apply(mesh.vertices()[mesh.triangle(t)[i]]);
+        longest = std::max(longest, (corners[i] - corners[0]).squaredNorm());
     }
-    const SmallVector<Vec3, 16>& corners = face.geometry.points;
-    face.geometry.planeNormal = up;
-    face.geometry.planeOffset = up.dot(corners[0]);
-    const double tolerance = 1e-9 * size;
+    const double planeOffset = up.dot(corners[0]);
+    const double tolerance = 1e-9 * std::max(body.radius, std::sqrt(longest));
     const int wholeRim = std::min(settings.rimPointsPerTurn, settings.maxContacts);
     auto intersect = [&](const AnyFeature& with, LiftedPoints& out) {
         intersectAnyFeatures(feature, with, -up, tolerance, -settings.margin, settings.spanContactRegion,
                              settings.rimPointsPerTurn, wholeRim, out);
     };
-    if (!plane.holds(up, face.geometry.planeOffset, tolerance)) {
-        plane.normal = up, plane.offset = face.geometry.planeOffset;
+    if (!plane.holds(up, planeOffset, tolerance)) {
+        plane.normal = up, plane.offset = planeOffset;
         plane.points.clear();
         intersect(planeFeature(PlaneInA{up, plane.offset}, body), plane.points);
     }
     const LiftedPoints& scratch = plane.points;
     const std::array<bool, 3> seam = seamsOf(mesh, t);
-    // Within the triangle seen along up, or on edge e of it, to the tolerance.
-    auto beyondEdge = [&](const Vec3& x, int e) {
-        const Vec3 edge = corners[(e + 1) % 3] - corners[e];
-        return (edge.cross(x - corners[e])).dot(up) / edge.norm();  // > 0: inside of edge e
-    };
+    // How far x lies inside edge e of the triangle seen along up (< 0: beyond it): along the edge's
+    // unit inward normal in the face's plane, up × edge / |edge|.
+    Vec3 inward[3];
+    for (int e = 0; e < 3; ++e) inward[e] = up.cross(corners[(e + 1) % 3] - corners[e]).normalized();
+    auto beyondEdge = [&](const Vec3& x, int e) { return inward[e].dot(x - corners[e]); };
     if (seam[0] && seam[1] && seam[2]) {
         for (const LiftedPoint& point : scratch)
             if (beyondEdge(point.position, 0) >= -tolerance && beyondEdge(point.position, 1) >= -tolerance &&
@@ -185,6 +183,12 @@ void appendAlongFace(const AnyFeature& feature, const ShapeBody& body, const Tri
                 points.push_back(point);
         return;
     }
+    // Not inside a flat region: the triangle's own face, intersected with A's feature.
+    AnyFeature face;
+    face.geometry.type = FeatureType::Face;
+    for (const Vec3& corner : corners) face.geometry.points.push_back(corner);
+    face.geometry.planeNormal = up;
+    face.geometry.planeOffset = planeOffset;
     const std::size_t first = points.size();
     double deepest = -INFINITY;  // how far A reaches below the face's plane: its plane points' depth
     for (const LiftedPoint& point : scratch) deepest = std::max(deepest, point.depth);
@@ -255,6 +259,7 @@ void collide(const ShapeRef& shapeA, const Pose& poseA, const TriangleMesh& mesh
         bounds.lower[axis] = aInMesh.apply(body.support(-along))[axis] - grown;
     }
     std::vector<int> triangles;
+    triangles.reserve(64);  // a resting body's few dozen: one allocation, not a growth per doubling
     mesh.overlapping(bounds, triangles);
     if (filter.accepts)
         triangles.erase(std::remove_if(triangles.begin(), triangles.end(),
@@ -269,13 +274,15 @@ void collide(const ShapeRef& shapeA, const Pose& poseA, const TriangleMesh& mesh
     const AngularTolerance angularTolerance(settings.angularTolerance);
     std::vector<BodyPairContact> contacts;
     std::vector<int> from;  // each contact's triangle
+    contacts.reserve(32), from.reserve(32);
     Manifold manifold;
     FeatureAlong along;
     LiftedPoints lifted;
     PlanePoints plane;
+    const MeshArrays arrays = meshArrays(mesh);
     for (int t : triangles) {
-        const Vec3& n = mesh.triangleNormal(t);
-        const double aboveFace = n.dot(centre - mesh.vertices()[mesh.triangle(t)[0]]);
+        const Vec3& n = arrays.triangleNormal(t);
+        const double aboveFace = n.dot(centre - arrays.vertices()[arrays.triangle(t)[0]]);
         // Wholly in front beyond the margin, or wholly behind. A shape sunk through the face from
         // the front but not through it — its centre behind, part of it still in front — is pushed
         // back out to the front: that is a body that went halfway through a terrain in one step (a
@@ -287,7 +294,7 @@ void collide(const ShapeRef& shapeA, const Pose& poseA, const TriangleMesh& mesh
         // then the mesh answers as the plane of its face would, clipped to the triangle. A triangle
         // none of whose edges is active (inside a flat region) has no other feature: the growth
         // distance is not asked.
-        const bool anyActiveEdge = mesh.edgeActive(t, 0) || mesh.edgeActive(t, 1) || mesh.edgeActive(t, 2);
+        const bool anyActiveEdge = arrays.edgeActive(t, 0) || arrays.edgeActive(t, 1) || arrays.edgeActive(t, 2);
         bool alongFace = !anyActiveEdge;
         if (anyActiveEdge) {
             collidePair(shape, poseA, Shape::of(mesh.trianglePrism(t)), poseMesh, PairQuery{settings}, manifold);
@@ -298,12 +305,12 @@ void collide(const ShapeRef& shapeA, const Pose& poseA, const TriangleMesh& mesh
             // either: the shape is sunk deep at a ridge (the prism's growth leaves by its back) or
             // lies beside the rim, and the face's normal answers (nothing where the shape is not
             // over the face).
-            alongFace = cosineToFace >= cosine || !(cosineToFace > 1e-9) || !keepsGrowthNormal(mesh, t, outward, sine);
+            alongFace = cosineToFace >= cosine || !(cosineToFace > 1e-9) || !keepsGrowthNormal(arrays, t, outward, sine);
         }
         if (alongFace) {
             const Vec3 down = -(meshInA.rotation * n);  // A's frame, from A towards the face
             lifted.clear();
-            appendAlongFace(along.at(body, down, angularTolerance), body, mesh, meshInA, t, settings, plane, lifted);
+            appendAlongFace(along.at(body, down, angularTolerance), body, arrays, meshInA, t, settings, plane, lifted);
             const Vec3 normal = -(poseMesh.rotation * n);  // world, from A towards the mesh
             for (const LiftedPoint& point : lifted) {
                 contacts.push_back({poseA.apply(point.position), -normal, point.depth});

@@ -3,6 +3,8 @@
 // triangles' bounds for the mid phase.
 #include <gdcontact/triangle_mesh.hpp>
 
+#include "shapes/mesh_arrays.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -196,6 +198,13 @@ TriangleMesh& TriangleMesh::operator=(TriangleMesh&&) noexcept = default;
 int TriangleMesh::triangleCount() const { return static_cast<int>(data_->triangles.size()); }
 int TriangleMesh::skippedTriangleCount() const { return data_->skipped; }
 const std::vector<Vec3>& TriangleMesh::vertices() const { return data_->vertices; }
+namespace detail {
+MeshArrays meshArrays(const TriangleMesh& mesh) {
+    const TriangleMesh::Data& d = *mesh.data_;
+    return {d.vertices.data(), d.triangles.data(), d.normals.data(), d.activeEdges.data(), d.neighbours.data()};
+}
+}  // namespace detail
+
 const std::array<int, 3>& TriangleMesh::triangle(int t) const { return data_->triangles.at(t); }
 const Vec3& TriangleMesh::triangleNormal(int t) const { return data_->normals.at(t); }
 bool TriangleMesh::edgeActive(int t, int e) const { return (data_->activeEdges.at(t) >> e) & 1; }
