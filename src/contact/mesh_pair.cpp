@@ -228,6 +228,30 @@ struct FeatureAlong {
     }
 };
 
+// A polytope's vertices below triangle t's plane within its shadow (the mesh's frame, `aInMesh`
+// placing A there), each a contact at its own depth along the triangle's normal, midway between
+// the vertex and the plane: what the plane of that triangle says of them. The fallback of a query
+// whose triangles found nothing although the shape is sunk into the mesh: deep in a surface that
+// curves within the angular tolerance, A's feature along each triangle's normal can lie over
+// another triangle, and that triangle's along its own normal elsewhere again.
+void appendSunkVertices(const Polytope& polytope, const Pose& aInMesh, const MeshArrays& mesh, const Pose& poseMesh,
+                        int t, std::vector<BodyPairContact>& contacts, std::vector<int>& from) {
+    const Vec3& n = mesh.triangleNormal(t);
+    const Vec3* v = mesh.vertices();
+    const std::array<int, 3>& corners = mesh.triangle(t);
+    for (const Vec3& vertex : polytope.vertices()) {
+        const Vec3 p = aInMesh.apply(vertex);
+        const double depth = n.dot(v[corners[0]] - p);
+        if (!(depth > 0)) continue;
+        bool inside = true;
+        for (int e = 0; e < 3 && inside; ++e)
+            inside = n.dot((v[corners[(e + 1) % 3]] - v[corners[e]]).cross(p - v[corners[e]])) >= 0;
+        if (!inside) continue;
+        contacts.push_back({poseMesh.apply(Vec3(p + 0.5 * depth * n)), poseMesh.rotation * n, depth});
+        from.push_back(t);
+    }
+}
+
 // The shape as the pair table takes it, its size checked where it enters.
 Shape enterShape(const ShapeRef& a) {
     switch (a.kind()) {
@@ -280,6 +304,8 @@ void collide(const ShapeRef& shapeA, const Pose& poseA, const TriangleMesh& mesh
     LiftedPoints lifted;
     PlanePoints plane;
     const MeshArrays arrays = meshArrays(mesh);
+    std::vector<int> facing;  // the triangles A is in front of, or sunk through from the front
+    facing.reserve(triangles.size());
     for (int t : triangles) {
         const Vec3& n = arrays.triangleNormal(t);
         const double aboveFace = n.dot(centre - arrays.vertices()[arrays.triangle(t)[0]]);
@@ -290,6 +316,7 @@ void collide(const ShapeRef& shapeA, const Pose& poseA, const TriangleMesh& mesh
         // world (docs/meshes.md measures it). A shape that approaches the face from behind is
         // pushed through it alike: a one-sided mesh cannot tell the two apart.
         if (aboveFace > reach || aboveFace < -body.radius) continue;
+        facing.push_back(t);
         // The face's normal wherever the triangle's feature is its face or an inactive edge or vertex:
         // then the mesh answers as the plane of its face would, clipped to the triangle. A triangle
         // none of whose edges is active (inside a flat region) has no other feature: the growth
@@ -323,6 +350,8 @@ void collide(const ShapeRef& shapeA, const Pose& poseA, const TriangleMesh& mesh
             from.push_back(t);
         }
     }
+    if (contacts.empty() && shape.polytope)
+        for (int t : facing) appendSunkVertices(*shape.polytope, aInMesh, arrays, poseMesh, t, contacts, from);
     if (contacts.empty()) return;
     BodyPairFrame frame;
     frame.centreA = centreWorld;
