@@ -370,6 +370,69 @@ void buildReleasedHeap(BenchScene& s) {
     }
 }
 
+/// A pose whose local z axis (a cylinder's or capsule's axis) lies along `axis`.
+Pose lying(double x, double y, double z, const Vec3& axis) {
+    Pose pose;
+    pose.position = Vec3(x, y, z);
+    pose.rotation = Eigen::Quaterniond::FromTwoVectors(Vec3::UnitZ(), axis).toRotationMatrix();
+    return pose;
+}
+
+// The curved scenes (issue 33; SceneSpec::curved): ODE's dCylinder and dCapsule geoms, made by the
+// scene library from makeCylinderPart / makeCapsulePart with ODE's exact mass properties. Stacked
+// without gaps, as the boxes.
+void buildCans(BenchScene& s) {
+    // Three cans standing cap on cap (cylinders of radius 10 cm, 20 cm tall, 1000 kg/m³: 6.3 kg,
+    // a full paint pail) and a board (40 × 40 × 4 cm, 600 kg/m³: 3.8 kg) lying on the top one:
+    // cylinder–plane, cylinder–cylinder (cap on cap) and cylinder–box.
+    s.ground();
+    const double radius = 0.1, length = 0.2;
+    for (int i = 0; i < 3; ++i)
+        s.body({gdc::scenes::makeCylinderPart(radius, length)}, 1000.0, at(0, 0, 0.5 * length + i * length));
+    const Vec3 board(0.2, 0.2, 0.02);
+    s.box(board, 600.0, at(0, 0, 3 * length + board.z()));
+}
+
+void buildTins(BenchScene& s) {
+    // Ten tins stacked cap on cap (cylinders of radius 4 cm, 12 cm tall, 1000 kg/m³: 0.6 kg): a
+    // column 1.2 m tall on an 8 cm foot, the curved counterpart of stack10.
+    s.ground();
+    const double radius = 0.04, length = 0.12;
+    for (int i = 0; i < 10; ++i)
+        s.body({gdc::scenes::makeCylinderPart(radius, length)}, 1000.0, at(0, 0, 0.5 * length + i * length));
+}
+
+void buildLogs(BenchScene& s) {
+    // Logs between chocks: two logs (cylinders of radius 5 cm, 60 cm long, 600 kg/m³: 2.8 kg)
+    // lying along y on the ground 5 mm apart, a third in their groove, and two chocks (beams
+    // 10 × 60 × 10 cm, 2000 kg/m³: 12 kg) on the ground 2.5 mm off the lower logs' outer sides:
+    // cylinder–plane, cylinder–cylinder along a line, cylinder–box (once the lower logs are pushed
+    // out), box–plane. What fell in every seed tried (3 to 5) for both contenders under every
+    // stepper, so was left out: the same three logs without the chocks (the lower logs roll
+    // apart, as real pipe stacks do), a pyramid of 3, 2 and 1 logs between the chocks, and a crib
+    // (layers crossing at right angles: a bed of rollers, each layer rolling on the one below).
+    s.ground();
+    const double radius = 0.05, length = 0.6, pitch = 2 * radius + 5e-3;
+    const double rise = std::sqrt(4 * radius * radius - 0.25 * pitch * pitch);  // the upper log touching both
+    s.body({gdc::scenes::makeCylinderPart(radius, length)}, 600.0, lying(-0.5 * pitch, 0, radius, Vec3::UnitY()));
+    s.body({gdc::scenes::makeCylinderPart(radius, length)}, 600.0, lying(0.5 * pitch, 0, radius, Vec3::UnitY()));
+    s.body({gdc::scenes::makeCylinderPart(radius, length)}, 600.0, lying(0, 0, radius + rise, Vec3::UnitY()));
+    const Vec3 chock(0.05, 0.3, 0.05);
+    for (const double side : {-1.0, 1.0})
+        s.box(chock, 2000.0, at(side * (0.5 * pitch + radius + 2.5e-3 + chock.x()), 0, chock.z()));
+}
+
+void buildPipe(BenchScene& s) {
+    // A pipe on two blocks: two 20 cm cubes (1000 kg/m³: 8 kg) 40 cm apart on the ground and a
+    // capsule (radius 5 cm, 60 cm between its ball centres, 1000 kg/m³: 5.2 kg) lying across
+    // both, along a line on each (capsule–box, box–plane).
+    s.ground();
+    const Vec3 block(0.1, 0.1, 0.1);
+    s.box(block, 1000.0, at(-0.2, 0, block.z()));
+    s.box(block, 1000.0, at(0.2, 0, block.z()));
+    s.body({gdc::scenes::makeCapsulePart(0.05, 0.6)}, 1000.0, lying(0, 0, 2 * block.z() + 0.05, Vec3::UnitX()));
+}
+
 /// "column" + light cubes (2–4) + "top" or "mid" + the heavy cube's mass ratio (10, 100, 1000) +
 /// "h" for hulls, e.g. column3mid100h; false if `name` is not one.
 bool parseColumn(const std::string& name, int& lightCount, bool& middle, double& ratio, bool& hulls) {
@@ -404,6 +467,10 @@ BenchScene::Builder builderFor(const std::string& name) {
     if (name == "composites") return buildComposites;
     if (name == "pile1000") return buildPile;
     if (name == "cards") return buildCards;
+    if (name == "cans") return buildCans;
+    if (name == "tins") return buildTins;
+    if (name == "logs") return buildLogs;
+    if (name == "pipe") return buildPipe;
     throw std::invalid_argument("no builder for scene " + name);
 }
 
@@ -623,7 +690,10 @@ int collideAll(World& w, const Contender& contender) {
         dBodyID b1 = dGeomGetBody(pair.g1), b2 = dGeomGetBody(pair.g2);
         if (b1 == b2) continue;  // parts of one composite, or two static geoms
         if (b1 && b2 && dAreConnectedExcluding(b1, b2, dJointTypeContact)) continue;
-        const int count = gdcontact
+        // gdcontact takes the pairs install() would route to it (gdc::ode::handles); the others
+        // (capsule–plane, capsule–capsule, sphere–box, ...) go to dCollide, as after install().
+        const bool mine = gdcontact && gdc::ode::handles(dGeomGetClass(pair.g1), dGeomGetClass(pair.g2));
+        const int count = mine
                               ? gdc::ode::collide(pair.g1, pair.g2, w.contactsAsked, w.buffer.data(),
                                                   sizeof(dContactGeom), contender.settings)
                               : dCollide(pair.g1, pair.g2, w.contactsAsked, w.buffer.data(), sizeof(dContactGeom));
@@ -803,6 +873,22 @@ const std::vector<SceneSpec>& sceneSpecs() {
     };
     static const std::vector<SceneSpec> all = [] {
         std::vector<SceneSpec> list = specs;
+        // Curved scenes (issue 33): ODE's dCylinder and dCapsule; ode-box is ODE's own colliders
+        // on the same geoms (SceneSpec::curved).
+        const std::vector<SceneSpec> curved = {
+            {"cans", "3 cans (cylinders r 10 cm, 20 cm tall, 6.3 kg) standing cap on cap, a 40×40×4 cm board (3.8 kg) on top",
+             4.0, false, false, true, "", 50},
+            {"tins", "10 tins (cylinders r 4 cm, 12 cm tall, 0.6 kg) standing cap on cap", 4.0, false, false, true, "", 50},
+            {"logs", "3 logs (cylinders r 5 cm, 60 cm long, 2.8 kg) lying side by side, two on the ground between two 12 kg chocks (10×60×10 cm), one in their groove",
+             3.0, false, false, true, "", 50},
+            {"pipe", "a pipe (capsule r 5 cm, 60 cm between its ball centres, 5.2 kg) lying across two 20 cm cubes 40 cm apart",
+             3.0, false, false, true, "", 50},
+        };
+        for (SceneSpec c : curved) {
+            c.curved = true;
+            c.fullSeeds = 100;
+            list.push_back(c);
+        }
         // Columns (issue 35): 2–4 light unit cubes of 1 kg and a heavy one on top or in the middle.
         for (const bool hulls : {false, true})
             for (const char* where : {"top", "mid"})
@@ -886,6 +972,7 @@ constexpr double kDriftFraction = 0.5;       // of the body's least horizontal e
 constexpr double kTiltLimit = 0.25;          // rad
 constexpr double kDropFraction = 0.5;        // of the body's height, beyond its start gap
 constexpr double kCreepDistance = 0.05;      // m horizontally since a heap let go one by one settled
+constexpr double kFellOverTilt = 0.7853981633974483;  // rad (45°): curved scenes' collapse
 }  // namespace
 
 const std::vector<FailureLimit>& failureLimits() {
@@ -908,6 +995,8 @@ const std::vector<FailureLimit>& collapseLimits() {
     static const std::vector<FailureLimit> limits = {
         {Failure::Drop, "standing", "a body's centre is lower than its start by more than half its height (plus its start gap) at the end: the structure fell"},
         {Failure::Creep, "heaps let go one by one", "a body lies farther from where it was when the heap settled than its largest horizontal extent, at the end"},
+        {Failure::Tilt, "curved", "a body's axis is turned more than 45° from its start at the end: it fell over (a can on its side sinks less than half its height)"},
+        {Failure::Drift, "curved", "a body lies farther (horizontally) from its start than its least horizontal extent at the end: it rolled or slid away (a log its diameter)"},
         {Failure::Exploded, "all", "exploded, tunnelled, flung or crashed (as in the fine limits)"},
     };
     return limits;
@@ -1036,7 +1125,7 @@ SeedResult runSeed(const SceneSpec& spec, const Stepper& stepper, const Contende
     }
     if (result.failure == static_cast<int>(Failure::Exploded)) result.drift = kExplodedDistance;
     // The gross criterion (collapseLimits()): at the end, a standing scene's body sank by half its
-    // height, or a heap body let go one by one moved more than its size since the heap settled;
+    // height (in a curved scene also: fell over, or rolled or slid away), or a heap body let go one by one moved more than its size since the heap settled;
     // in every scene, a run that exploded, tunnelled, was flung or crashed.
     const Failure f = static_cast<Failure>(result.failure);
     result.collapsed = f == Failure::Exploded || f == Failure::Tunnelled || f == Failure::Flung;
@@ -1045,6 +1134,11 @@ SeedResult runSeed(const SceneSpec& spec, const Stepper& stepper, const Contende
         const Vec3 position(p[0], p[1], p[2]);
         if (!spec.heap) {
             if (w->startPosition[i].z() - position.z() > kDropFraction * w->height[i] + w->allowedDrop[i]) result.collapsed = 1;
+            if (spec.curved) {  // fell over, or rolled / slid away
+                const Vec3 up = upAxis(w->bodies[i]);
+                if (std::atan2(up.cross(w->startUp[i]).norm(), up.dot(w->startUp[i])) > kFellOverTilt) result.collapsed = 1;
+                if ((position - w->startPosition[i]).head<2>().norm() > w->size[i]) result.collapsed = 1;
+            }
         } else if (!w->settledPosition.empty()) {
             const double moved = (position - w->settledPosition[i]).head<2>().norm();
             result.creep = std::max(result.creep, moved);

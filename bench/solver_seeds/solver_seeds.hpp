@@ -1,11 +1,12 @@
 // The solver benchmark over seeds (issue 22, item 1): scenes that stress ODE's solvers (stacks,
 // heavy on light, a pyramid, a brick wall, thin plates, hull stacks, composites, a 1000-box pile,
-// card houses), each run under dWorldQuickStep (10, 20, 50 iterations) and dWorldStep over many
-// seeds (dRandSetSeed plus a small seeded jitter of the start poses, the same for every
-// contender), with gdcontact, ODE's own colliders on dConvex shapes and ODE on dBox shapes side by
-// side. Per run: whether it failed (the limits of failureLimits()), drift, contacts per step,
-// collision and solver time per step, when every body fell asleep, ODE's messages. Besides, the
-// cost of one step on identical body states (measureCost), which free-running worlds cannot give.
+// card houses; cans, tins, logs and a pipe of ODE's dCylinder and dCapsule geoms), each run under
+// dWorldQuickStep (10, 20, 50 iterations) and dWorldStep over many seeds (dRandSetSeed plus a
+// small seeded jitter of the start poses, the same for every contender), with gdcontact, ODE's
+// own colliders on dConvex shapes and ODE on dBox shapes side by side. Per run: whether it failed
+// (the limits of failureLimits()), drift, contacts per step, collision and solver time per step,
+// when every body fell asleep, ODE's messages. Besides, the cost of one step on identical body
+// states (measureCost), which free-running worlds cannot give.
 //
 // The worlds are built by the scene library of samples/scenes (gdc::scenes::Scene: bodies of convex
 // parts, dBox or dConvex, mass properties); the collision pass and the step are this file's own, so
@@ -26,7 +27,10 @@ namespace gdc::solver_seeds {
 // ---- contenders ----------------------------------------------------------------------------------
 enum class ColliderKind {
     Gdcontact,  ///< gdc::ode::collide in the near callback, explicit settings; boxes as dBox geoms
-    OdeBox,     ///< ODE's own colliders, boxes as dBox (dBoxBox, dBoxPlane); other hulls as dConvex
+    /// ODE's own colliders, boxes as dBox (dBoxBox, dBoxPlane); other hulls as dConvex. In the
+    /// curved scenes (SceneSpec::curved) it is ODE's own answer on the scene's own geoms: dBox,
+    /// dCylinder, dCapsule through dCollide, nothing installed.
+    OdeBox,
     OdeConvex,  ///< ODE's own colliders, every shape a dConvex (libccd's one-point convex collider)
 };
 
@@ -111,6 +115,11 @@ struct SceneSpec {
     bool neverSleeps = false;
     /// The scene family the overview groups it in ("" for the classic scenes, "column", "heap").
     std::string family = "";
+    /// Made of ODE's curved geoms (dCylinder, dCapsule) and boxes (issue 33). ode-box applies: ODE's
+    /// own colliders on these same geoms, its own answer for them; ode-convex does not (it would
+    /// turn only the boxes into dConvex). The collapse also counts a body that fell over or rolled
+    /// away (collapseLimits()), which a can on its side or a log off the pile need.
+    bool curved = false;
 };
 /// Every scene, in the report's order.
 const std::vector<SceneSpec>& sceneSpecs();

@@ -265,7 +265,10 @@ int main(int argc, char** argv) {
         };
         auto applies = [](const ss::SceneSpec& s, const ss::Stepper& st, const ss::Contender& c) {
             if (!st.quick && !s.worldStep) return false;
-            if (c.kind == ss::ColliderKind::OdeBox && !s.hasBoxes) return false;
+            // ode-box: dBox geoms, or in a curved scene ODE's own colliders on its dCylinder,
+            // dCapsule and dBox geoms; ode-convex would turn only a curved scene's boxes into dConvex.
+            if (c.kind == ss::ColliderKind::OdeBox && !s.hasBoxes && !s.curved) return false;
+            if (c.kind == ss::ColliderKind::OdeConvex && s.curved) return false;
             return true;
         };
         std::vector<Job> jobs;
@@ -462,7 +465,7 @@ int main(int argc, char** argv) {
             f << "scene,description,seconds,seeds,world_seeds,world_step,world_skip_reason,ode_box\n";
             for (const ss::SceneSpec& s : scenes)
                 f << s.name << ',' << csvText(s.description) << ',' << s.duration * o.durationScale << ','
-                  << seedsFor(s, true, "quick20") << ',' << (s.worldStep ? seedsFor(s, false, "world") : 0) << ',' << s.worldStep << ',' << csvText(s.worldSkipReason) << ',' << s.hasBoxes << '\n';
+                  << seedsFor(s, true, "quick20") << ',' << (s.worldStep ? seedsFor(s, false, "world") : 0) << ',' << s.worldStep << ',' << csvText(s.worldSkipReason) << ',' << (s.hasBoxes || s.curved) << '\n';
         }
         {
             std::ofstream f(prefix + "limits.csv");

@@ -160,8 +160,10 @@ def section(results, plot_link, level, reproduce=None):
                "about the vertical, ±0.002 rad about x and y; the same for every contender of a seed). dt 0.01 s, "
                "ERP 0.2, CFM 1e-10 (ODE's double default), friction 0.6 (`dContactApprox1`), 16 contacts asked per "
                "geom pair; ODE's auto-disable on with its default thresholds. Contenders: **gdcontact** "
-               "(`gdc::ode::collide` in the near callback, boxes as dBox geoms), **ODE dBox** (ODE's own colliders, "
-               "boxes as dBox), **ODE dConvex** (ODE's own colliders, every shape a dConvex: libccd's one-point "
+               "(`gdc::ode::collide` in the near callback, boxes as dBox geoms; the pairs `gdc::ode::handles` refuses "
+               "go to `dCollide`), **ODE dBox** (ODE's own colliders, boxes as dBox; in the curved scenes — "
+               "dCylinder and dCapsule geoms — ODE's own colliders on the same geoms, its own answer for them; "
+               "ODE dConvex is not run there), **ODE dConvex** (ODE's own colliders, every shape a dConvex: libccd's one-point "
                "collider), and gdcontact settings variants (`gdc:NAME=VALUE`).\n")
     out.append(f"Command: `{command[0]}` — {command[1] if len(command) > 1 else ''}"
                + (f". Reproduce: `{reproduce}`." if reproduce else "") + "\n")
