@@ -14,6 +14,10 @@
 #include "contact/feature_intersection.hpp"
 #include "shapes/round_shape.hpp"
 
+#include <gdcontact/settings.hpp>
+
+#include <algorithm>
+
 namespace gdc::detail {
 
 /// Intersects two features in the plane ⟂ `normal` (unit, from A towards B) and appends the lifted
@@ -26,6 +30,12 @@ namespace gdc::detail {
 void intersectAnyFeatures(const AnyFeature& a, const AnyFeature& b, const Vec3& normal, double tolerance,
                           double minimumDepth, bool spanRegion, int arcPointsPerTurn, int wholeRimPoints,
                           LiftedPoints& out);
+
+/// How many points a whole rim gets: the budget, at most the points of a turn (a regular polygon of
+/// as many points as the solver gets is the support polygon nearest the disc).
+inline int wholeRimPoints(const Settings& settings) {
+    return std::min(settings.rimPointsPerTurn, settings.maxContacts);
+}
 
 /// Stage 3 against a half-space: its feature is its whole plane, so the contact region is A's
 /// feature itself where it is deep enough, and each of its points is lifted straight onto the plane

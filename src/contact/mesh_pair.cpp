@@ -159,10 +159,9 @@ void appendAlongFace(const AnyFeature& feature, const ShapeBody& body, const Mes
     }
     const double planeOffset = up.dot(corners[0]);
     const double tolerance = 1e-9 * std::max(body.radius, std::sqrt(longest));
-    const int wholeRim = std::min(settings.rimPointsPerTurn, settings.maxContacts);
     auto intersect = [&](const AnyFeature& with, LiftedPoints& out) {
         intersectAnyFeatures(feature, with, -up, tolerance, -settings.margin, settings.spanContactRegion,
-                             settings.rimPointsPerTurn, wholeRim, out);
+                             settings.rimPointsPerTurn, wholeRimPoints(settings), out);
     };
     if (!plane.holds(up, planeOffset, tolerance)) {
         plane.normal = up, plane.offset = planeOffset;
@@ -332,7 +331,8 @@ void collide(const ShapeRef& shapeA, const Pose& poseA, const TriangleMesh& mesh
             // either: the shape is sunk deep at a ridge (the prism's growth leaves by its back) or
             // lies beside the rim, and the face's normal answers (nothing where the shape is not
             // over the face).
-            alongFace = cosineToFace >= cosine || !(cosineToFace > 1e-9) || !keepsGrowthNormal(arrays, t, outward, sine);
+            alongFace =
+                cosineToFace >= cosine || !(cosineToFace > 1e-9) || !keepsGrowthNormal(arrays, t, outward, sine);
         }
         if (alongFace) {
             const Vec3 down = -(meshInA.rotation * n);  // A's frame, from A towards the face

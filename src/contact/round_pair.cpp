@@ -1,12 +1,13 @@
 // The paper's three stages for every pair with a curved kind (a sphere, a capsule, a cylinder) on
 // either side, against any body or a half-space: the pair table's cells for those kinds
-// (round_pair.hpp). On a half-space the stages are short: the plane's normal is the contact normal,
-// and A's feature for it, lifted onto the plane, is the contact region. A curved kind gives the method what a polytope gives it — a support point and a
+// (round_pair.hpp). A curved kind gives the method what a polytope gives it — a support point and a
 // Gauss-map feature (shapes/round_shape.hpp) — so the stages are the general ones on support
 // functions: stage 1 the growth distance by the GJK ray cast on (A − p_A) − (B − p_B), refined among
 // the features' planes (a face, a cap) where one of them needs less translation; stage 2 one feature
 // per body; stage 3 their exact intersection in the contact plane (disc_intersection.hpp), with the
-// depth confirmation along n. Everything is computed in A's frame.
+// depth confirmation along n. Everything is computed in A's frame. On a half-space the stages are
+// short: the plane's normal is the contact normal, and A's feature for it, lifted onto the plane, is
+// the contact region.
 #include "contact/round_pair.hpp"
 
 #include "contact/collide_general.hpp"
@@ -59,16 +60,14 @@ Vec3 fallbackNormal(const ShapeBody& a, const ShapeBody& b) {
 
 // The points written out: in lift order where the caller orders by depth itself (the ODE adapter)
 // and the ranking could only have ordered them (emitInLiftOrder), else ranked.
-void emitRound(const LiftedPoints& kept, const Vec3& normal, const Pose& poseA, const PairQuery& query, double tolerance,
-               const Vec3* centroids, int centroidCount, Manifold& out) {
+void emitRound(const LiftedPoints& kept, const Vec3& normal, const Pose& poseA, const PairQuery& query,
+               double tolerance, const Vec3* centroids, int centroidCount, Manifold& out) {
     const Settings& settings = query.settings;
     const bool ordered = query.order == ImportanceOrder::AmongEqualDepths &&
                          static_cast<int>(kept.size()) <= settings.maxContacts &&
                          emitInLiftOrder(kept, normal, poseA, settings, out);
     if (!ordered) emitManifold(kept, normal, poseA, settings, tolerance, centroids, centroidCount, out);
 }
-
-int wholeRimPoints(const Settings& settings) { return std::min(settings.rimPointsPerTurn, settings.maxContacts); }
 
 }  // namespace
 
