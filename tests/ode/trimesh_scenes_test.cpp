@@ -117,7 +117,7 @@ double lowestZ(const std::vector<dReal>& localPoints, dGeomID geom) {
     const dReal* r = dGeomGetRotation(geom);
     double lowest = INFINITY;
     for (std::size_t i = 0; i < localPoints.size(); i += 3)
-        lowest = std::min(lowest, p[2] + r[8] * localPoints[i] + r[9] * localPoints[i + 1] + r[10] * localPoints[i + 2]);
+        lowest = std::min<double>(lowest, p[2] + r[8] * localPoints[i] + r[9] * localPoints[i + 1] + r[10] * localPoints[i + 2]);
     return lowest;
 }
 
@@ -177,7 +177,7 @@ double span(const std::vector<dContactGeom>& contacts) {
     double longest = 0;
     for (const auto& a : contacts)
         for (const auto& b : contacts)
-            longest = std::max(longest, std::hypot(a.pos[0] - b.pos[0], a.pos[1] - b.pos[1], a.pos[2] - b.pos[2]));
+            longest = std::max<double>(longest, std::hypot(a.pos[0] - b.pos[0], a.pos[1] - b.pos[1], a.pos[2] - b.pos[2]));
     return longest;
 }
 
@@ -333,7 +333,7 @@ Slide slideAcrossSeams(bool installGdcontact) {
             dWorldQuickStep(world, 0.01);
             dJointGroupEmpty(joints);
             if (step >= 20) {  // settled after 0.2 s
-                slide.maxVerticalSpeed = std::max(slide.maxVerticalSpeed, std::abs(dBodyGetLinearVel(body)[2]));
+                slide.maxVerticalSpeed = std::max<double>(slide.maxVerticalSpeed, std::abs(dBodyGetLinearVel(body)[2]));
                 slide.lowest = std::min(slide.lowest, static_cast<double>(dBodyGetPosition(body)[2]));
             }
         }
