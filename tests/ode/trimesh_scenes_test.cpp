@@ -9,6 +9,7 @@
 
 #include "ode/ode_internals.hpp"  // detail::describeOdeColliders
 #include "ode/trimesh_geoms.hpp"  // detail::cachedTrimeshCount
+#include "ode_precision.hpp"
 #include "ode_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -29,9 +30,10 @@ namespace {
 
 // A flat floor at height z of n × n square cells of side `cell`, centred on the origin, each cell
 // two triangles (wound counter-clockwise seen from above: the front is up). ODE keeps pointers to
-// the arrays, so they live with the data.
+// the arrays, so they live with the data. The vertices are doubles (dGeomTriMeshDataBuildDouble)
+// whatever dReal is, as a program with double data builds them in either ODE.
 struct Floor {
-    std::vector<dReal> vertices;
+    std::vector<double> vertices;
     std::vector<dTriIndex> indices;
     dTriMeshDataID data = nullptr;
     dGeomID geom = nullptr;
@@ -52,7 +54,8 @@ struct Floor {
         indices.clear();
         const double half = 0.5 * n * cell;
         for (int j = 0; j <= n; ++j)
-            for (int i = 0; i <= n; ++i) vertices.insert(vertices.end(), {-half + cell * i, -half + cell * j, z});
+            for (int i = 0; i <= n; ++i)
+                vertices.insert(vertices.end(), {-half + cell * i, -half + cell * j, z});
         for (int j = 0; j < n; ++j)
             for (int i = 0; i < n; ++i) {
                 const dTriIndex a = static_cast<dTriIndex>(j * (n + 1) + i), b = a + 1,
@@ -61,7 +64,7 @@ struct Floor {
             }
     }
     void build() {
-        dGeomTriMeshDataBuildDouble(data, vertices.data(), 3 * sizeof(dReal), static_cast<int>(vertices.size() / 3),
+        dGeomTriMeshDataBuildDouble(data, vertices.data(), 3 * sizeof(double), static_cast<int>(vertices.size() / 3),
                                     indices.data(), static_cast<int>(indices.size()), 3 * sizeof(dTriIndex));
     }
     int triangleCount() const { return static_cast<int>(indices.size() / 3); }
@@ -103,11 +106,12 @@ std::vector<dReal> randomHullPoints(std::mt19937_64& random) {
     const double angles[4] = {0.3, 1.9, 3.4, 4.9};
     for (double angle : angles) {
         const double radius = 0.3 + 0.05 * unit(random);
-        points.insert(points.end(), {radius * std::cos(angle + 0.2 * unit(random)),
-                                     radius * std::sin(angle + 0.2 * unit(random)), -0.2});
+        points.insert(points.end(), {dReal(radius * std::cos(angle + 0.2 * unit(random))),
+                                     dReal(radius * std::sin(angle + 0.2 * unit(random))), dReal(-0.2)});
     }
     for (int i = 0; i < 12; ++i)
-        points.insert(points.end(), {0.25 * unit(random), 0.25 * unit(random), 0.05 + 0.15 * (1 + unit(random))});
+        points.insert(points.end(),
+                      {dReal(0.25 * unit(random)), dReal(0.25 * unit(random)), dReal(0.05 + 0.15 * (1 + unit(random)))});
     return points;
 }
 
@@ -156,13 +160,13 @@ TEST_CASE("a box and a hull resting on a triangulated floor get the contacts of 
             REQUIRE(!onPlane.empty());
             const double sign = order ? -1.0 : 1.0;  // the normal points from o2 into o1
             for (const auto& c : onMesh) {
-                CHECK(std::abs(c.normal[0]) < 1e-9);
-                CHECK(std::abs(c.normal[1]) < 1e-9);
-                CHECK(std::abs(c.normal[2] - sign) < 1e-9);
-                CHECK(std::abs(c.pos[2] - (kHeight - 0.5 * c.depth)) < 1e-9);
+                CHECK(std::abs(c.normal[0]) < realTolerance(1e-9));
+                CHECK(std::abs(c.normal[1]) < realTolerance(1e-9));
+                CHECK(std::abs(c.normal[2] - sign) < realTolerance(1e-9));
+                CHECK(std::abs(c.pos[2] - (kHeight - 0.5 * c.depth)) < realTolerance(1e-9));
             }
             INFO("on the mesh: " << describe(onMesh) << "\non the plane: " << describe(onPlane));
-            CHECK(std::abs(deepest(onMesh) - deepest(onPlane)) < 1e-9);
+            CHECK(std::abs(deepest(onMesh) - deepest(onPlane)) < realTolerance(1e-9));
             CHECK(std::abs(supportArea(onMesh) - supportArea(onPlane)) < 1e-6);
             ++compared;
         }
@@ -206,18 +210,18 @@ TEST_CASE("capsules and cylinders resting on a triangulated floor get the plane'
         REQUIRE(!onPlane.empty());
         REQUIRE(onMesh.size() >= (kind == 2 ? 3u : 2u));
         for (const auto& c : onMesh) {
-            CHECK(std::abs(c.normal[0]) < 1e-9);
-            CHECK(std::abs(c.normal[1]) < 1e-9);
-            CHECK(std::abs(c.normal[2] - 1) < 1e-9);
-            CHECK(std::abs(c.depth - kSink) < 1e-9);  // level: every point as deep as the lowest line
+            CHECK(std::abs(c.normal[0]) < realTolerance(1e-9));
+            CHECK(std::abs(c.normal[1]) < realTolerance(1e-9));
+            CHECK(std::abs(c.normal[2] - 1) < realTolerance(1e-9));
+            CHECK(std::abs(c.depth - kSink) < realTolerance(1e-9));  // level: every point as deep as the lowest line
         }
-        CHECK(std::abs(deepest(onMesh) - deepest(onPlane)) < 1e-9);
+        CHECK(std::abs(deepest(onMesh) - deepest(onPlane)) < realTolerance(1e-9));
         if (kind < 2) {
-            CHECK(std::abs(span(onMesh) - span(onPlane)) < 1e-9);  // the whole line, end to end
+            CHECK(std::abs(span(onMesh) - span(onPlane)) < realTolerance(1e-9));  // the whole line, end to end
         } else {
             const dReal* centre = dGeomGetPosition(body);
             for (const auto& c : onMesh)  // on the rim of the lower cap
-                CHECK(std::abs(std::hypot(c.pos[0] - centre[0], c.pos[1] - centre[1]) - radius) < 1e-9);
+                CHECK(std::abs(std::hypot(c.pos[0] - centre[0], c.pos[1] - centre[1]) - radius) < realTolerance(1e-9));
         }
         dGeomDestroy(body);
     }
@@ -256,7 +260,7 @@ TEST_CASE("either order of a trimesh pair gives mirrored contacts", "[trimesh][o
             // The triangle's index on the trimesh's side, as ODE's trimesh colliders give it.
             CHECK((f.side1 == -1 && f.side2 >= 0 && f.side2 < 128 && b.side1 == f.side2 && b.side2 == -1));
             CHECK((backwardOde[i].side1 == b.side1 && forwardOde[i].side2 == f.side2));
-            CHECK(std::abs(Vec3(f.normal[0], f.normal[1], f.normal[2]).norm() - 1.0) < 1e-12);
+            CHECK(std::abs(Vec3(f.normal[0], f.normal[1], f.normal[2]).norm() - 1.0) < realTolerance(1e-12));
         }
         nonEmpty += forward.empty() ? 0 : 1;
         dGeomDestroy(body);
@@ -390,7 +394,7 @@ TEST_CASE("a trimesh whose data is destroyed and rebuilt, or updated, is read af
     const std::size_t cachedBefore = gdc::ode::detail::cachedTrimeshCount();
     auto contacts = boxOn(floor.geom, 0.1, 0.2, 0.149);
     REQUIRE(!contacts.empty());
-    CHECK(std::abs(deepest(contacts) - 1e-3) < 1e-9);
+    CHECK(std::abs(deepest(contacts) - 1e-3) < realTolerance(1e-9));
     CHECK(gdc::ode::detail::cachedTrimeshCount() == cachedBefore + 1);
 
     // Destroyed (the free hook forgets its mesh) and another data, 0.375 higher with 4 × 4 cells,
@@ -404,20 +408,20 @@ TEST_CASE("a trimesh whose data is destroyed and rebuilt, or updated, is read af
     dGeomTriMeshSetData(floor.geom, floor.data);
     contacts = boxOn(floor.geom, 0.1, 0.2, 0.524);
     REQUIRE(!contacts.empty());
-    CHECK(std::abs(deepest(contacts) - 1e-3) < 1e-9);
+    CHECK(std::abs(deepest(contacts) - 1e-3) < realTolerance(1e-9));
     for (const auto& c : contacts) CHECK(c.side2 < 32);
     // 0.125 deep in the new floor, its centre still in front of it (a centre behind a one-sided
     // surface gets nothing: tests/mesh_test.cpp).
     contacts = boxOn(floor.geom, 0.1, 0.2, 0.4);
     REQUIRE(!contacts.empty());
-    CHECK(std::abs(deepest(contacts) - 0.125) < 1e-9);
+    CHECK(std::abs(deepest(contacts) - 0.125) < realTolerance(1e-9));
 
     // The vertices changed in place, announced with dGeomTriMeshDataUpdate: 0.125 lower.
     for (std::size_t i = 2; i < floor.vertices.size(); i += 3) floor.vertices[i] -= 0.125;
     dGeomTriMeshDataUpdate(floor.data);
     contacts = boxOn(floor.geom, 0.1, 0.2, 0.399);
     REQUIRE(!contacts.empty());
-    CHECK(std::abs(deepest(contacts) - 1e-3) < 1e-9);
+    CHECK(std::abs(deepest(contacts) - 1e-3) < realTolerance(1e-9));
     CHECK(boxOn(floor.geom, 0.1, 0.2, 0.401).empty());
 }
 
@@ -460,9 +464,9 @@ TEST_CASE("a degenerate triangle in a trimesh's data is skipped", "[trimesh][ode
     REQUIRE(contacts.size() >= 4);
     for (const auto& c : contacts) {
         CHECK((c.side2 == 0 || c.side2 == 3));
-        CHECK(std::abs(c.normal[2] - 1.0) < 1e-9);
+        CHECK(std::abs(c.normal[2] - 1.0) < realTolerance(1e-9));
     }
-    CHECK(std::abs(deepest(contacts) - 1e-3) < 1e-9);
+    CHECK(std::abs(deepest(contacts) - 1e-3) < realTolerance(1e-9));
     dGeomDestroy(mesh);
     dGeomTriMeshDataDestroy(data);
 }
