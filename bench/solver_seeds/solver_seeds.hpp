@@ -80,7 +80,7 @@ struct Stepper {
     std::string name;  ///< "quick10", "quick20", "quick50", "world", each optionally with "/cfm=X/mu=X/maxc=N"
     bool quick = true;  ///< dWorldQuickStep (else dWorldStep)
     int iterations = 20;
-    double cfm = 1e-10;      ///< the world's CFM (SolverConstants::cfm unless "/cfm=X")
+    double cfm = sizeof(dReal) == sizeof(double) ? 1e-10 : 1e-5;  ///< SolverConstants::cfm unless "/cfm=X"
     double mu = 0.6;         ///< every contact's friction (SolverConstants::mu unless "/mu=X")
     int contactsAsked = 16;  ///< maxc of every collider call (SolverConstants::contactsAsked unless "/maxc=N")
 };
@@ -125,12 +125,13 @@ struct SceneSpec {
 const std::vector<SceneSpec>& sceneSpecs();
 const SceneSpec& findScene(const std::string& name);  ///< throws std::invalid_argument
 
-/// The solver every scene runs with (besides the stepper): dt, ERP, CFM (ODE's double default),
-/// friction, contacts asked per geom pair.
+/// The solver every scene runs with (besides the stepper): dt, ERP, CFM (ODE's default for its
+/// precision: 1e-10 in double, 1e-5 in single, as dWorldCreate sets it), friction, contacts asked
+/// per geom pair.
 struct SolverConstants {
     static constexpr double dt = 0.01;          // s
     static constexpr double erp = 0.2;
-    static constexpr double cfm = 1e-10;        // ODE's double-precision default
+    static constexpr double cfm = sizeof(dReal) == sizeof(double) ? 1e-10 : 1e-5;
     static constexpr double mu = 0.6;           // dContactApprox1 friction pyramid
     static constexpr int contactsAsked = 16;    // flags & 0xffff of every collider call
 };

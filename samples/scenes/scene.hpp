@@ -39,6 +39,11 @@ enum class Method {
 const char* methodName(Method method);                          // "gdc", "tracking", "ode"
 std::optional<Method> parseMethod(const std::string& name);     // inverse of methodName
 
+/// ODE's own default CFM for the precision it was built with, as dWorldCreate sets it: 1e-10 in
+/// double precision, 1e-5 in single (a float Dantzig solver at 1e-10 meets degenerate pivots —
+/// "LCP internal error" — on a heap of resting contacts, whichever collider made them).
+inline constexpr double kOdeDefaultCfm = sizeof(dReal) == sizeof(double) ? 1e-10 : 1e-5;
+
 /// The ODE solver a scene runs with. Every field maps to one ODE call.
 struct SolverSettings {
     enum class Stepper { World, Quick };  ///< dWorldStep (exact LCP) / dWorldQuickStep (iterative)
@@ -46,7 +51,7 @@ struct SolverSettings {
     int iterations = 20;          ///< dWorldSetQuickStepNumIterations (QuickStep only; count)
     double dt = 0.01;             ///< time step (s)
     double erp = 0.2;             ///< dWorldSetERP: fraction of penetration corrected per step
-    double cfm = 1e-10;           ///< dWorldSetCFM: constraint force mixing (softness); ODE's double-precision default
+    double cfm = kOdeDefaultCfm;  ///< dWorldSetCFM: constraint force mixing (softness); ODE's default
     double mu = 0.6;              ///< Coulomb friction of every contact (dContactApprox1 pyramid)
     double surfaceLayer = 0.0;    ///< dWorldSetContactSurfaceLayer (m); penetration error is measured above it
     int maxContactsPerPair = 8;   ///< contacts asked of the collider for one pair of geoms
