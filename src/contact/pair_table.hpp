@@ -46,6 +46,10 @@ struct PairQuery {
     /// AngularTolerance(settings.angularTolerance), kept by a caller across calls (its cosine and
     /// sine are not recomputed); nullptr: made where a composition needs it.
     const AngularTolerance* angularTolerance = nullptr;
+    /// The caller's kept tolerance, or one made from the settings.
+    AngularTolerance angular() const {
+        return angularTolerance ? *angularTolerance : AngularTolerance(settings.angularTolerance);
+    }
 };
 
 /// One cell of the table: the pair's contacts written into `out` (normal, pointCount, points

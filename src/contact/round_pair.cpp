@@ -75,8 +75,7 @@ void collideRoundOnPlaneInto(const Shape& shapeA, const Pose& poseA, const Shape
                              const PairQuery& query, Manifold& out) {
     const Settings& settings = query.settings;
     clearManifold(out);
-    const AngularTolerance angular =
-        query.angularTolerance ? *query.angularTolerance : AngularTolerance(settings.angularTolerance);
+    const AngularTolerance angular = query.angular();
     const ShapeBody a(shapeA, Pose{}, settings.bruteForceSupportLimit);
     const double tolerance = 1e-9 * a.radius;
     const double minimumDepth = -settings.margin;
@@ -99,8 +98,7 @@ void collideRoundInto(const Shape& shapeA, const Pose& poseA, const Shape& shape
                       const PairQuery& query, Manifold& out) {
     const Settings& settings = query.settings;
     clearManifold(out);
-    const AngularTolerance angular =
-        query.angularTolerance ? *query.angularTolerance : AngularTolerance(settings.angularTolerance);
+    const AngularTolerance angular = query.angular();
     const ShapeBody a(shapeA, Pose{}, settings.bruteForceSupportLimit);
     const ShapeBody b(shapeB, poseA.relative(poseB), settings.bruteForceSupportLimit);
     const double size = a.radius + b.radius;
