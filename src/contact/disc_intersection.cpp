@@ -16,6 +16,35 @@ struct PlaneFrame {
     Vec3 place(const Vec2& q, double height) const { return q.x() * u + q.y() * v + height * n; }
 };
 
+// The disc's unit directions in its plane for the rim c + r(cos t·dir1 + sin t·dir2) seen along n:
+// dir2 = axis × n ⟂ n, dir1 = dir2 × axis with dir1·n = |axis × n| ≥ 0, so t = 0 is the rim's
+// deepest point along n. Where the disc lies flat to n (no deepest point), dir1 is its reference
+// direction, fixed in the cylinder.
+void rimDirections(const Disc& disc, const Vec3& n, Vec3& dir1, Vec3& dir2) {
+    dir2 = disc.axis.cross(n);
+    const double length = dir2.norm();
+    if (length > 1e-12) {
+        dir2 /= length;
+        dir1 = dir2.cross(disc.axis);
+    } else {
+        dir1 = (disc.reference - disc.reference.dot(disc.axis) * disc.axis).normalized();
+        dir2 = disc.axis.cross(dir1);
+    }
+}
+
+// emit(cos t, sin t) at t = 2πk/count, k = 0 … count − 1: a regular polygon by turning (cos, sin)
+// one step at a time, one sincos for all of it.
+template <class Emit>
+void regularPolygon(int count, Emit emit) {
+    const double stepCos = std::cos(kTwoPi / count), stepSin = std::sin(kTwoPi / count);
+    double c = 1, s = 0;
+    for (int k = 0; k < count; ++k) {
+        emit(c, s);
+        const double next = c * stepCos - s * stepSin;
+        s = s * stepCos + c * stepSin, c = next;
+    }
+}
+
 // A disc seen along n: its rim c + cos t·e1 + sin t·e2 in the plane, e1 ⟂ e2 (the images of the
 // disc's radius along dir1, in its plane and rising along n, and along dir2 ⟂ n). Normalised
 // coordinates map the ellipse onto the unit circle.
@@ -25,16 +54,8 @@ struct Rim {
     Vec3 discCentre, axis;
 
     Rim(const Disc& disc, const PlaneFrame& frame) : discCentre(disc.centre), axis(disc.axis) {
-        Vec3 dir2 = disc.axis.cross(frame.n);
-        const double length = dir2.norm();
-        Vec3 dir1;
-        if (length > 1e-12) {
-            dir2 /= length;
-            dir1 = dir2.cross(disc.axis);  // dir1·n = |axis × n| ≥ 0: t = 0 is the rim's deepest point
-        } else {
-            dir1 = (disc.reference - disc.reference.dot(disc.axis) * disc.axis).normalized();
-            dir2 = disc.axis.cross(dir1);
-        }
+        Vec3 dir1, dir2;
+        rimDirections(disc, frame.n, dir1, dir2);
         centre = frame.project(disc.centre);
         e1 = disc.radius * frame.project(dir1);
         e2 = disc.radius * frame.project(dir2);
@@ -132,14 +153,7 @@ void insideArcs(const Rim& rim, SmallVector<double, 16>& angles, const RimSpacin
     const double step = spacing.step;
     if (angles.empty()) {
         if (!inside(rim.at(0))) return;
-        // The regular polygon by turning (cos, sin) by one step at a time: one sincos, not one a point.
-        const double stepCos = std::cos(kTwoPi / spacing.whole), stepSin = std::sin(kTwoPi / spacing.whole);
-        double c = 1, s = 0;
-        for (int k = 0; k < spacing.whole; ++k) {
-            out.push_back(rim.centre + c * rim.e1 + s * rim.e2);
-            const double next = c * stepCos - s * stepSin;
-            s = s * stepCos + c * stepSin, c = next;
-        }
+        regularPolygon(spacing.whole, [&](double c, double s) { out.push_back(rim.centre + c * rim.e1 + s * rim.e2); });
         return;
     }
     std::sort(angles.begin(), angles.end());
@@ -391,16 +405,8 @@ void liftOntoPlane(const AnyFeature& a, const Vec3& normal, double planeOffset, 
     // The rim c + cos t·e1 + sin t·e2, t = 0 at its deepest point (as Rim places it): its depth is
     // d0 + amplitude·cos t.
     const Disc& disc = a.disc;
-    Vec3 dir2 = disc.axis.cross(normal);
-    const double length = dir2.norm();
-    Vec3 dir1;
-    if (length > 1e-12) {
-        dir2 /= length;
-        dir1 = dir2.cross(disc.axis);
-    } else {
-        dir1 = (disc.reference - disc.reference.dot(disc.axis) * disc.axis).normalized();
-        dir2 = disc.axis.cross(dir1);
-    }
+    Vec3 dir1, dir2;
+    rimDirections(disc, normal, dir1, dir2);
     const Vec3 e1 = disc.radius * dir1, e2 = disc.radius * dir2;
     const int whole = std::max(wholeRimPoints, 3);
     const double d0 = depthOf(disc.centre), amplitude = normal.dot(e1);
@@ -416,14 +422,8 @@ void liftOntoPlane(const AnyFeature& a, const Vec3& normal, double planeOffset, 
         for (int j = 1; j < pieces; ++j) add(rimAt(-spread + 2 * spread * j / pieces), true);
         return;
     }
-    // The whole rim: a regular polygon from the deepest point, turning (cos, sin) a step at a time.
-    const double stepCos = std::cos(kTwoPi / whole), stepSin = std::sin(kTwoPi / whole);
-    double c = 1, s = 0;
-    for (int k = 0; k < whole; ++k) {
-        add(disc.centre + c * e1 + s * e2, false);
-        const double next = c * stepCos - s * stepSin;
-        s = s * stepCos + c * stepSin, c = next;
-    }
+    // The whole rim: a regular polygon from the deepest point.
+    regularPolygon(whole, [&](double c, double s) { add(disc.centre + c * e1 + s * e2, false); });
 }
 
 }  // namespace gdc::detail
