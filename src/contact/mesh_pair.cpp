@@ -303,19 +303,19 @@ void collide(const ShapeRef& shapeA, const Pose& poseA, const TriangleMesh& mesh
     LiftedPoints lifted;
     PlanePoints plane;
     const MeshArrays arrays = meshArrays(mesh);
-    std::vector<int> facing;  // the triangles A is in front of, or sunk through from the front
-    facing.reserve(triangles.size());
+    // Whether A faces triangle t: not wholly in front beyond the margin, nor wholly behind. A shape
+    // sunk through the face from the front but not through it — its centre behind, part of it
+    // still in front — is pushed back out to the front: that is a body that went halfway through a
+    // terrain in one step (a rock falling at 9 m/s moves 9 cm a step), and letting it go would drop
+    // it out of the world (docs/meshes.md measures it). A shape that approaches the face from
+    // behind is pushed through it alike: a one-sided mesh cannot tell the two apart.
+    auto facing = [&](int t) {
+        const double aboveFace = arrays.triangleNormal(t).dot(centre - arrays.vertices()[arrays.triangle(t)[0]]);
+        return aboveFace <= reach && aboveFace >= -body.radius;
+    };
     for (int t : triangles) {
         const Vec3& n = arrays.triangleNormal(t);
-        const double aboveFace = n.dot(centre - arrays.vertices()[arrays.triangle(t)[0]]);
-        // Wholly in front beyond the margin, or wholly behind. A shape sunk through the face from
-        // the front but not through it — its centre behind, part of it still in front — is pushed
-        // back out to the front: that is a body that went halfway through a terrain in one step (a
-        // rock falling at 9 m/s moves 9 cm a step), and letting it go would drop it out of the
-        // world (docs/meshes.md measures it). A shape that approaches the face from behind is
-        // pushed through it alike: a one-sided mesh cannot tell the two apart.
-        if (aboveFace > reach || aboveFace < -body.radius) continue;
-        facing.push_back(t);
+        if (!facing(t)) continue;
         // The face's normal wherever the triangle's feature is its face or an inactive edge or vertex:
         // then the mesh answers as the plane of its face would, clipped to the triangle. A triangle
         // none of whose edges is active (inside a flat region) has no other feature: the growth
@@ -351,7 +351,8 @@ void collide(const ShapeRef& shapeA, const Pose& poseA, const TriangleMesh& mesh
         }
     }
     if (contacts.empty() && shape.polytope)
-        for (int t : facing) appendSunkVertices(*shape.polytope, aInMesh, arrays, poseMesh, t, contacts, from);
+        for (int t : triangles)
+            if (facing(t)) appendSunkVertices(*shape.polytope, aInMesh, arrays, poseMesh, t, contacts, from);
     if (contacts.empty()) return;
     BodyPairFrame frame;
     frame.centreA = centreWorld;
