@@ -42,10 +42,11 @@ extern "C" {
 
 /* Values of gdcSettings.contactOrder (gdc::ContactOrder): the order in which dWorldQuickStep meets
  * one pair's contacts. */
-#define GDC_ORDER_DEEPEST_LAST 0  /* the deepest point last (default): the least drift */
+#define GDC_ORDER_DEEPEST_LAST 0  /* the deepest point last: the least drift */
 #define GDC_ORDER_DEEPEST_FIRST 1 /* the deepest point first: resting bodies sleep a little sooner */
 #define GDC_ORDER_DEEPEST_FIRST_WHEN_LOADED 2 /* deepest first where the pair is deeper than
-                                                * loadedDepthFraction of its size, else deepest last */
+                                                * loadedDepthFraction of its size, else deepest last
+                                                * (default): loaded columns hold */
 
 /* The fields of gdc::Settings, in its order, with its units and the bounds gdcInstall checks
  * (settings.hpp says why each bound is there): rayCastTolerance (relative, 1e-15..1e-3),

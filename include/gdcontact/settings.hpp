@@ -20,23 +20,25 @@ GDCONTACT_API void validate(const Settings& settings);
 /// is always in the order of importance: the deepest point first, then each point that adds the
 /// most support, so that every prefix is the best set of its length.)
 enum class ContactOrder {
-    /// The solver meets the shallowest point first and the deepest last (default; the adapter's
-    /// array is deepest first, as earlier gdcontact wrote it): the least drift and twist.
+    /// The solver meets the shallowest point first and the deepest last (the adapter's array is
+    /// deepest first, as gdcontact wrote it before DeepestFirstWhenLoaded became the default): the
+    /// least drift and twist in stacks of equal bodies; a column of light bodies under a heavy one
+    /// collapses more often than with ODE's dBox colliders.
     DeepestLast,
     /// The solver meets the deepest point first and the shallowest last: resting piles fall
     /// asleep a little sooner, tall stacks drift more (still less than with ODE's dBox colliders);
     /// a column carrying a heavy body stands far more often.
     DeepestFirst,
     /// DeepestFirst where the pair is loaded — its deepest point deeper than
-    /// Settings::loadedDepthFraction times the pair's size (the larger of the two shapes' least
-    /// widths, each twice its Polytope::inradius(): a box's least extent; a plane has none) — and
-    /// DeepestLast elsewhere: stacks of equal bodies resting at their usual depth keep
-    /// DeepestLast's rows (thin or small bodies may pass the threshold unloaded), pairs carrying a
-    /// load the solver's cut-off sweep cannot settle (a heavy body on a column of light
-    /// ones) get the order that holds them: under dWorldQuickStep the loaded columns collapse far
-    /// less often than with DeepestLast or ODE's dBox colliders. Not the default: thin plates
-    /// twist and a 100 kg cube on a 1 kg one drifts a little more than the robustness tests allow
-    /// against dBox (docs/algorithm.md, "The contact set the solver gets").
+    /// Settings::loadedDepthFraction times the pair's size (the larger of the two shapes'
+    /// diameters, twice the bounding radius; a plane or a mesh has none) — and DeepestLast
+    /// elsewhere (default). Under dWorldQuickStep a resting pair sinks to a depth its load, ERP,
+    /// CFM and the iterations set, not its size: a pair a hundredth of its size deep carries a load
+    /// the solver's cut-off sweep cannot settle (a heavy body on a column of light ones), and met
+    /// deepest first it holds — the loaded columns collapse far less often than with DeepestLast or
+    /// ODE's dBox colliders — while stacks, walls, thin plates and hulls, which rest far shallower,
+    /// keep DeepestLast's rows and its small drift (docs/algorithm.md, "The contact set the solver
+    /// gets").
     DeepestFirstWhenLoaded,
 };
 
@@ -155,22 +157,22 @@ struct Settings {
     /// (DeepestFirst, DeepestFirstWhenLoaded: far fewer collapses); measured over seeds in
     /// docs/algorithm.md and docs/benchmarks.md. The core's array is always in the order of importance.
     /// Bounds: a ContactOrder value (checked: a value cast from an integer may be none of them).
-    ContactOrder contactOrder = ContactOrder::DeepestLast;
+    ContactOrder contactOrder = ContactOrder::DeepestFirstWhenLoaded;
 
     /// ContactOrder::DeepestFirstWhenLoaded only — a pair counts as loaded where its deepest
-    /// point is deeper than this fraction of the pair's size: the larger of the two shapes' least
-    /// widths (twice Polytope::inradius(): a box's least extent; a plane counts for none) —
+    /// point is deeper than this fraction of the pair's size: the larger of the two shapes'
+    /// diameters (twice the bounding radius: a box's diagonal; a plane or a mesh counts for none) —
     /// relative, unitless, so the rule is the same at every scale. Smaller: more pairs met deepest
-    /// first (0: every overlapping pair, as DeepestFirst — the loaded columns stand, tall stacks of
-    /// equal bodies drift more); larger: fewer (above the depth any load reaches: DeepestLast
-    /// everywhere). 0.003 (3 mm on a 1 m cube): the robustness tests' 10-stacks stay below it
-    /// (their rows are DeepestLast's, the figures the same to the digit), the columns under a
-    /// 100× heavier body go beyond it (docs/benchmarks.md, "Columns and heaps"). The depth a load
-    /// makes depends on ERP, CFM and the iterations, not on size: a world with other ERP or CFM
-    /// may want another value.
-    /// Bounds [0, 1]: beyond 1 a pair would have to sink deeper than its own width (DeepestLast
+    /// first (0: every overlapping pair, as DeepestFirst — tall stacks of equal bodies and thin
+    /// plates drift more); larger: fewer (above the depth any load reaches: DeepestLast everywhere,
+    /// the loaded columns collapse). 0.01 (17 mm on a 1 m cube): stacks, walls, plates and hulls
+    /// rest below it, the columns under a 100× heavier body go beyond it; 0.006 to 0.0115 held the
+    /// columns alike, 0.02 let them collapse as often as with dBox (docs/benchmarks.md, "Columns and
+    /// heaps"). The depth a load makes depends on ERP, CFM and the iterations, not on size: a world
+    /// with other ERP or CFM may want another value.
+    /// Bounds [0, 1]: beyond 1 a pair would have to sink deeper than its own diameter (DeepestLast
     /// in effect: a typing mistake).
-    double loadedDepthFraction = 0.003;
+    double loadedDepthFraction = 0.01;
 
     /// Reduction — hysteresis without state (relative, unitless): after the deepest point (depths
     /// equal within rounding count as equal), candidates whose gain — the distance from the first

@@ -190,27 +190,27 @@ bool resolveRound(const Settings& settings, detail::ThreadCache& cache, detail::
     return true;
 }
 
-// One geom of a Round pair as the core takes it, with its bounding and inscribed radii.
-gdc::detail::Shape shapeOf(const detail::ResolvedPair& pair, bool second, double& radius, double& inradius) {
+// One geom of a Round pair as the core takes it, with its bounding radius.
+gdc::detail::Shape shapeOf(const detail::ResolvedPair& pair, bool second, double& radius) {
     const gdc::detail::ShapeKind kind = second ? pair.kind2 : pair.kind1;
     const Polytope* polytope = second ? pair.polytope2 : pair.polytope1;
-    radius = inradius = 0;
+    radius = 0;
     if (kind == gdc::detail::ShapeKind::HalfSpace) return planeShape(*pair.plane);
     if (kind == gdc::detail::ShapeKind::Box || kind == gdc::detail::ShapeKind::Hull) {
-        radius = polytope->radius(), inradius = polytope->inradius();
+        radius = polytope->radius();
         return gdc::detail::Shape::of(*polytope);
     }
     const gdc::detail::RoundShape& round = second ? pair.round2 : pair.round1;
-    radius = detail::roundRadius(kind, round), inradius = detail::roundInradius(kind, round);
+    radius = detail::roundRadius(kind, round);
     return gdc::detail::Shape::of(kind, round);
 }
 
 // A Round pair: the core's cell for the curved kinds (no pair cache: its entries hold polytopes).
 int collideRound(const detail::ResolvedPair& pair, int maxContacts, dContactGeom* contact, int skip,
                  const Settings& settings, detail::ThreadCache& cache) {
-    double radius1, radius2, inradius1, inradius2;
-    const gdc::detail::Shape shape1 = shapeOf(pair, false, radius1, inradius1);
-    const gdc::detail::Shape shape2 = shapeOf(pair, true, radius2, inradius2);
+    double radius1, radius2;
+    const gdc::detail::Shape shape1 = shapeOf(pair, false, radius1);
+    const gdc::detail::Shape shape2 = shapeOf(pair, true, radius2);
     const Pose& pose1 = shape1.hasPose() ? pair.pose1() : kWorld;
     const Pose& pose2 = shape2.hasPose() ? pair.pose2() : kWorld;
     Manifold& manifold = cache.scratch;
@@ -220,7 +220,7 @@ int collideRound(const detail::ResolvedPair& pair, int maxContacts, dContactGeom
     });
     if (manifold.empty()) return 0;
     return detail::writeContacts(manifold, pair.flip, radius1 + radius2, maxContacts, settings.contactOrder,
-                                 detail::loadedDepthOf(settings, inradius1, inradius2), pair.o1, pair.o2, contact, skip,
+                                 detail::loadedDepthOf(settings, radius1, radius2), pair.o1, pair.o2, contact, skip,
                                  true);
 }
 
@@ -285,7 +285,7 @@ int collideRound(const detail::ResolvedPair& pair, int maxContacts, dContactGeom
     if (manifold.empty()) return 0;
     // The core's own answer is checked finite; a carried one (in cache.carried) is not.
     return detail::writeContacts(manifold, planeFirst, polytope.radius(), maxContacts, settings.contactOrder,
-                                 detail::loadedDepthOf(settings, polytope.inradius(), 0.0), o1, o2, contact, skip,
+                                 detail::loadedDepthOf(settings, polytope.radius(), 0.0), o1, o2, contact, skip,
                                  &manifold != &cache.carried);
 }
 
@@ -314,7 +314,7 @@ int collideRound(const detail::ResolvedPair& pair, int maxContacts, dContactGeom
     // The core's own answer (box–box or general) is checked finite, as the half-space one.
     return detail::writeContacts(manifold, swapped, polytope1.radius() + polytope2.radius(), maxContacts,
                                  settings.contactOrder,
-                                 detail::loadedDepthOf(settings, polytope1.inradius(), polytope2.inradius()), o1, o2,
+                                 detail::loadedDepthOf(settings, polytope1.radius(), polytope2.radius()), o1, o2,
                                  contact, skip, &manifold != &cache.carried);
 }
 

@@ -49,8 +49,4 @@ double roundRadius(gdc::detail::ShapeKind kind, const gdc::detail::RoundShape& r
     return round.radius + round.halfLength;
 }
 
-double roundInradius(gdc::detail::ShapeKind kind, const gdc::detail::RoundShape& round) {
-    return kind == gdc::detail::ShapeKind::Cylinder ? std::min(round.radius, round.halfLength) : round.radius;
-}
-
 }  // namespace gdc::ode::detail

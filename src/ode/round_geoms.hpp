@@ -24,8 +24,7 @@ inline bool isRoundClass(int geomClass) {
 /// non-finite size.
 void readRound(dGeomID geom, int geomClass, gdc::detail::ShapeKind& kind, gdc::detail::RoundShape& round);
 
-/// A bound of the curved shape's points about its centre, and the radius of a ball inside it.
+/// A bound of the curved shape's points about its centre.
 double roundRadius(gdc::detail::ShapeKind kind, const gdc::detail::RoundShape& round);
-double roundInradius(gdc::detail::ShapeKind kind, const gdc::detail::RoundShape& round);
 
 }  // namespace gdc::ode::detail

@@ -144,9 +144,8 @@ int collideMeshPair(const ResolvedPair& pair, int maxContacts, dContactGeom* con
     const bool meshFirst = pair.flip;
     const dGeomID meshGeom = meshFirst ? pair.o1 : pair.o2;
     const dGeomID other = meshFirst ? pair.o2 : pair.o1;
-    // The other geom's bounding and inscribed radii (the touching tolerance, the loaded depth).
+    // The other geom's bounding radius (the touching tolerance, the loaded depth).
     const double radius = pair.polytope1 ? pair.polytope1->radius() : roundRadius(pair.kind1, pair.round1);
-    const double inradius = pair.polytope1 ? pair.polytope1->inradius() : roundInradius(pair.kind1, pair.round1);
     const Pose& pose = pair.pose1();
     const Pose& meshPose = pair.pose2();
     // Held for the call: a rebuild by another thread cannot take it away meanwhile.
@@ -193,7 +192,7 @@ int collideMeshPair(const ResolvedPair& pair, int maxContacts, dContactGeom* con
     const ContactOrder order = settings.contactOrder;
     const bool reverse =
         order == ContactOrder::DeepestFirst ||
-        (order == ContactOrder::DeepestFirstWhenLoaded && kept[0].first > loadedDepthOf(settings, inradius, 0.0));
+        (order == ContactOrder::DeepestFirstWhenLoaded && kept[0].first > loadedDepthOf(settings, radius, 0.0));
 
     char* bytes = reinterpret_cast<char*>(contact);
     for (int k = 0; k < written; ++k) {

@@ -69,10 +69,10 @@ inline Ranked* rankByDepth(const ContactPoint* point, const ContactPoint* end, d
 }  // namespace write_contacts_detail
 
 /// ContactOrder::DeepestFirstWhenLoaded's threshold (settings.hpp): `loadedDepthFraction` of the
-/// pair's size, the larger of its shapes' least widths, each twice the inradius (a plane: none,
-/// pass 0 for it).
-inline double loadedDepthOf(const Settings& settings, double inradius1, double inradius2) {
-    return settings.loadedDepthFraction * 2.0 * std::max(inradius1, inradius2);
+/// pair's size, the larger of its shapes' diameters, each twice the bounding radius (a plane or a
+/// mesh: none, pass 0 for it).
+inline double loadedDepthOf(const Settings& settings, double radius1, double radius2) {
+    return settings.loadedDepthFraction * 2.0 * std::max(radius1, radius2);
 }
 
 /// The core's contacts as ODE's: at most maxContacts, written in place at stride `skip`, in the

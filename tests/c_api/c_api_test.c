@@ -46,7 +46,8 @@ static void checkSettings(void) {
     memset(&defaults, 0xff, sizeof defaults);
     gdcDefaultSettings(&defaults);
     CHECK(defaults.maxContacts == 6);
-    CHECK(defaults.contactOrder == GDC_ORDER_DEEPEST_LAST);
+    CHECK(defaults.contactOrder == GDC_ORDER_DEEPEST_FIRST_WHEN_LOADED);
+    CHECK(defaults.loadedDepthFraction == 0.01);
     CHECK(defaults.reductionHysteresis > 0.0 && defaults.reductionHysteresis <= 0.1);
     CHECK(defaults.maxRayCastIterations == 64);
     CHECK(defaults.spanContactRegion == 0);

@@ -49,7 +49,7 @@ std::vector<dContactGeom> expectedContacts(dGeomID o1, dGeomID o2, int limit, co
     Manifold manifold;
     bool flip;  // the core's A is o2
     double size;
-    double leastWidth;  // the larger of the shapes' least widths (a plane has none)
+    double diameter;  // the larger of the shapes' diameters (a plane has none)
     if (planeFirst || planeSecond) {
         dGeomID body = planeFirst ? o2 : o1, plane = planeFirst ? o1 : o2;
         dVector4 p;
@@ -59,7 +59,7 @@ std::vector<dContactGeom> expectedContacts(dGeomID o1, dGeomID o2, int limit, co
                                 HalfSpace{Vec3(p[0], p[1], p[2]).normalized(), p[3]}, settings);
         flip = planeFirst;
         size = polytope->radius();
-        leastWidth = 2 * polytope->inradius();
+        diameter = 2 * polytope->radius();
     } else {
         const Pose pose1 = gdc::ode::poseOf(o1), pose2 = gdc::ode::poseOf(o2);
         const Vec3 &p = pose2.position, &q = pose1.position;
@@ -72,7 +72,7 @@ std::vector<dContactGeom> expectedContacts(dGeomID o1, dGeomID o2, int limit, co
         const std::shared_ptr<const Polytope> b = gdc::ode::polytopeOf(flip ? o1 : o2);
         manifold = gdc::collide(*a, flip ? pose2 : pose1, *b, flip ? pose1 : pose2, settings);
         size = a->radius() + b->radius();
-        leastWidth = 2 * std::max(a->inradius(), b->inradius());
+        diameter = 2 * std::max(a->radius(), b->radius());
     }
     std::vector<dContactGeom> out;
     if (manifold.empty()) return out;
@@ -89,7 +89,7 @@ std::vector<dContactGeom> expectedContacts(dGeomID o1, dGeomID o2, int limit, co
     if (!kept.empty() && manifold.points[kept.front()].depth > 0)
         while (!(manifold.points[kept.back()].depth > 0)) kept.pop_back();
     kept.resize(std::min<std::size_t>(kept.size(), static_cast<std::size_t>(maxContacts)));
-    const bool loaded = !kept.empty() && manifold.points[kept.front()].depth > installed.loadedDepthFraction * leastWidth;
+    const bool loaded = !kept.empty() && manifold.points[kept.front()].depth > installed.loadedDepthFraction * diameter;
     if (installed.contactOrder == ContactOrder::DeepestFirst ||
         (installed.contactOrder == ContactOrder::DeepestFirstWhenLoaded && loaded))
         std::reverse(kept.begin(), kept.end());

@@ -160,7 +160,7 @@ void nearCallback(void* data, dGeomID o1, dGeomID o2) {
     w.contactCount += n;
 }
 
-dBodyID addBox(World& w, double sx, double sy, double sz, double mass, const dReal* position, double yaw) {
+dBodyID addBox(World& w, double sx, double sy, double sz, double mass, const std::array<double, 3>& position, double yaw) {
     dBodyID body = dBodyCreate(w.world);
     dMass m;
     dMassSetBoxTotal(&m, mass, sx, sy, sz);
@@ -206,16 +206,16 @@ Outcome run(const std::string& scene, const Contender& contender, int seed, int 
     if (scene == "heavy" || scene == "heavy1000") {
         const double heavy = scene == "heavy" ? 100 : 1000;
         for (int side : {-1, 1}) {
-            const dReal p[3] = {side * 0.75 + 0.01 * jitter(random), 0.01 * jitter(random), 0.5};
+            const std::array<double, 3> p = {side * 0.75 + 0.01 * jitter(random), 0.01 * jitter(random), 0.5};
             addBox(w, 1, 1, 1, 1, p, 0.02 * jitter(random));
         }
-        const dReal p[3] = {0.02 * jitter(random), 0.02 * jitter(random), 1.5};
+        const std::array<double, 3> p = {0.02 * jitter(random), 0.02 * jitter(random), 1.5};
         addBox(w, 3, 1, 1, heavy, p, 0.02 * jitter(random));
         seconds = 5;
     } else if (scene == "stack10" || scene == "stack20") {
         const int count = scene == "stack10" ? 10 : 20;
         for (int i = 0; i < count; ++i) {
-            const dReal p[3] = {0.01 * jitter(random), 0.01 * jitter(random), 0.5 + i};
+            const std::array<double, 3> p = {0.01 * jitter(random), 0.01 * jitter(random), 0.5 + i};
             addBox(w, 1, 1, 1, 1, p, 0.01 * jitter(random));
         }
         seconds = 10;
@@ -224,7 +224,7 @@ Outcome run(const std::string& scene, const Contender& contender, int seed, int 
         // (±1 mm, ±0.01 rad yaw, ±0.002 rad tilt about x and y), 4 s.
         const int count = scene == "stack10-bench" ? 10 : 20;
         for (int i = 0; i < count; ++i) {
-            const dReal p[3] = {1e-3 * jitter(random), 1e-3 * jitter(random), 0.1 + 0.2 * i};
+            const std::array<double, 3> p = {1e-3 * jitter(random), 1e-3 * jitter(random), 0.1 + 0.2 * i};
             dBodyID body = addBox(w, 0.2, 0.2, 0.2, 8, p, 0);
             dMatrix3 r;
             dRFromEulerAngles(r, 0.002 * jitter(random), 0.002 * jitter(random), 0.01 * jitter(random));
@@ -235,7 +235,7 @@ Outcome run(const std::string& scene, const Contender& contender, int seed, int 
         dWorldSetAutoDisableFlag(w.world, 1);  // ODE's default thresholds
         std::uniform_real_distribution<double> unit(0, 1);
         for (int i = 0; i < 24; ++i) {
-            const dReal p[3] = {1.5 * jitter(random), 1.5 * jitter(random), 0.6 + 1.1 * i / 3.0};
+            const std::array<double, 3> p = {1.5 * jitter(random), 1.5 * jitter(random), 0.6 + 1.1 * i / 3.0};
             dBodyID body = addBox(w, 1, 1, 1, 1, p, 3.14159 * jitter(random));
             dMatrix3 r;
             dRFromEulerAngles(r, 0.3 * jitter(random), 0.3 * jitter(random), 3.14159 * jitter(random));
@@ -246,7 +246,7 @@ Outcome run(const std::string& scene, const Contender& contender, int seed, int 
         // bench/solver_seeds' plates20 with its jitter ranges (±1 mm, ±0.01 rad yaw, ±0.002 rad tilt).
         const double half = 0.25, halfThickness = half / 20;
         for (int i = 0; i < 10; ++i) {
-            const dReal p[3] = {1e-3 * jitter(random), 1e-3 * jitter(random), halfThickness * (1 + 2 * i)};
+            const std::array<double, 3> p = {1e-3 * jitter(random), 1e-3 * jitter(random), halfThickness * (1 + 2 * i)};
             dBodyID body = addBox(w, 2 * half, 2 * half, 2 * halfThickness, 1000 * 8 * half * half * halfThickness, p, 0);
             dMatrix3 r;
             dRFromEulerAngles(r, 0.002 * jitter(random), 0.002 * jitter(random), 0.01 * jitter(random));
@@ -257,7 +257,7 @@ Outcome run(const std::string& scene, const Contender& contender, int seed, int 
         dWorldSetERP(w.world, 0.2);
         dWorldSetCFM(w.world, 1e-5);
         w.mu = 0.8;
-        const dReal low[3] = {0, 0, 0.5}, high[3] = {0.05, 0.02, 1.4999};
+        const std::array<double, 3> low = {0, 0, 0.5}, high = {0.05, 0.02, 1.4999};
         addBox(w, 1, 1, 1, 1, low, 0);
         addBox(w, 1, 1, 1, 100, high, 0.1);
         seconds = 10;

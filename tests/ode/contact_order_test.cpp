@@ -68,20 +68,23 @@ std::vector<double> depthsMetOn(const Settings& settings, bool onBox, double dee
 }  // namespace
 
 // DeepestFirstWhenLoaded, the rule spelled out: a pair whose deepest point is deeper than
-// loadedDepthFraction times the larger of its two shapes' least extents (a plane has none) is met
-// deepest first, any other deepest last. Here the larger least extent is the body's 0.6 (the
-// static box's is 0.4), so at the default fraction 0.003 the line is 1.8 mm: 1.5 mm is below it
-// (but above the 1.2 mm the static box's extent, or the smaller one, would give), 2.5 mm above.
+// loadedDepthFraction times the larger of its two shapes' diameters (twice the bounding radius; a
+// plane has none) is met deepest first, any other deepest last. The body's diameter is
+// √(1 + 0.64 + 0.36) = 1.414, the static box's √(4 + 4 + 0.16) = 2.857: at a fraction of 0.001 the
+// line is 2.857 mm on the box and 1.414 mm on the plane. 1.2 mm is below both, 2 mm between them
+// (above the line the body's own diameter would give on the box), 3.5 mm above both. The least
+// widths (the former measure: 0.6 mm on the box at this fraction) would count every depth here as
+// loaded.
 TEST_CASE("DeepestFirstWhenLoaded meets a loaded pair deepest first and a lightly loaded one deepest last",
           "[ode][order]") {
+    CHECK(Settings{}.contactOrder == ContactOrder::DeepestFirstWhenLoaded);  // the default
     Settings settings;
-    settings.contactOrder = ContactOrder::DeepestFirstWhenLoaded;
-    REQUIRE(settings.loadedDepthFraction == 0.003);
-    const double line = settings.loadedDepthFraction * std::max(std::min({1.0, 0.8, 0.6}), std::min({2.0, 2.0, 0.4}));
-    REQUIRE(line == Approx(0.0018));
+    settings.loadedDepthFraction = 0.001;
+    const double bodyDiameter = std::sqrt(1.0 + 0.64 + 0.36), staticDiameter = std::sqrt(4.0 + 4.0 + 0.16);
     for (const bool onBox : {true, false}) {
-        for (const double deepest : {0.0015, 0.0025}) {
-            INFO((onBox ? "on a box" : "on a plane") << ", deepest " << deepest);
+        const double line = settings.loadedDepthFraction * (onBox ? std::max(bodyDiameter, staticDiameter) : bodyDiameter);
+        for (const double deepest : {0.0012, 0.002, 0.0035}) {
+            INFO((onBox ? "on a box" : "on a plane") << ", deepest " << deepest << ", line " << line);
             const std::vector<double> met = depthsMetOn(settings, onBox, deepest);
             REQUIRE(met.size() == 4);
             const double deepestMet = *std::max_element(met.begin(), met.end());
@@ -90,16 +93,18 @@ TEST_CASE("DeepestFirstWhenLoaded meets a loaded pair deepest first and a lightl
             if (deepestMet > line) CHECK(std::is_sorted(met.rbegin(), met.rend()));  // deepest first
             else CHECK(std::is_sorted(met.begin(), met.end()));                      // deepest last
             CHECK((deepest > line ? met.front() : met.back()) == deepestMet);
+            if (deepest == 0.002) CHECK((deepest > line) == !onBox);  // between the two lines
         }
     }
-    // The fraction moves the line: at 0.001 (0.6 mm) both pairs are loaded, at 0.01 (6 mm) neither.
-    for (const double fraction : {0.001, 0.01}) {
+    // The fraction moves the line: at 0.0005 (1.43 mm on the box) both deeper pairs are loaded, at
+    // 0.002 (5.7 mm) neither.
+    for (const double fraction : {0.0005, 0.002}) {
         settings.loadedDepthFraction = fraction;
-        for (const double deepest : {0.0015, 0.0025}) {
+        for (const double deepest : {0.002, 0.0035}) {
             INFO("fraction " << fraction << ", deepest " << deepest);
             const std::vector<double> met = depthsMetOn(settings, true, deepest);
             REQUIRE(met.size() == 4);
-            CHECK((fraction < 0.003 ? met.front() : met.back()) == *std::max_element(met.begin(), met.end()));
+            CHECK((fraction < 0.001 ? met.front() : met.back()) == *std::max_element(met.begin(), met.end()));
         }
     }
 }

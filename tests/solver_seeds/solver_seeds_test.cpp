@@ -304,6 +304,10 @@ TEST_CASE("issue 35: a heavy cube on a column of light ones and a heap let go on
     gdc::testing::OdeSession session;
     ss::installMessageCounter();
     CHECK(requireNoCollapseWhereDboxStands("column2top100", "quick20", 4) > 0);
+    // Seeds that DeepestLast, the default before DeepestFirstWhenLoaded, failed where dBox stood
+    // (seed 3 and seed 4 respectively: a body drifted past the fine limits).
+    CHECK(requireNoCollapseWhereDboxStands("column3mid100", "quick20", 4) > 0);
+    CHECK(requireNoCollapseWhereDboxStands("column3mid100", "quick20/cfm=1e-5/mu=0.8", 4) > 0);
     CHECK(requireNoCollapseWhereDboxStands("column2mid100", "quick10", 3) > 0);
     CHECK(requireNoCollapseWhereDboxStands("column2top10", "world", 2) > 0);
     CHECK(requireNoCollapseWhereDboxStands("heap12", "quick20", 2) > 0);
