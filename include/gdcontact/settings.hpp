@@ -165,8 +165,9 @@ struct Settings {
     /// relative, unitless, so the rule is the same at every scale. Smaller: more pairs met deepest
     /// first (0: every overlapping pair, as DeepestFirst — tall stacks of equal bodies and thin
     /// plates drift more); larger: fewer (above the depth any load reaches: DeepestLast everywhere,
-    /// the loaded columns collapse). 0.01 (17 mm on a 1 m cube): stacks, walls, plates and hulls
-    /// rest below it, the columns under a 100× heavier body go beyond it; 0.006 to 0.0115 held the
+    /// the loaded columns collapse). 0.01 (17 mm on a 1 m cube): where the benchmark's stacks, walls,
+    /// plates and hulls stand, they keep DeepestLast's counts and drift within seed noise, and the
+    /// columns under a 100× heavier body go beyond it; 0.006 to 0.0115 held the
     /// columns alike, 0.02 let them collapse as often as with dBox (docs/benchmarks.md, "Columns and
     /// heaps"). The depth a load makes depends on ERP, CFM and the iterations, not on size: a world
     /// with other ERP or CFM may want another value.
