@@ -66,76 +66,69 @@ PROFILE_CASES = {
     "hull_hull/4096/gdcontact_ode": "hull–hull through the ODE adapter, 4096-vertex near-spheres (size sweep poses)",
 }
 
-# ---- issue 11's targets ------------------------------------------------------------------------------
-# What stands in the way of each target that a run misses: one or two sentences read off the profiles
-# below (section "Where the time goes"), written after the full run. EDIT HERE; an empty entry prints
-# a placeholder. Shown only where the verdict is "missed".
+# ---- the targets (issue 31; the growth target is issue 11's) -------------------------------------------
+# What stands in the way of each target that a run misses, read off callgrind's per-function counts of the
+# same calls (`bench/callgrind_counts.py --work DIR`, then `callgrind_annotate --inclusive=yes` on the
+# contender's dump, divided by its calls) and the perf profiles below. Each says which parts the method
+# needs and what they cost alone against the reference's whole call. EDIT HERE after a full run; an empty
+# entry prints a placeholder. Shown only where the verdict is "missed".
 STANDS_IN_THE_WAY = {
-    "box_box_face_8": ("The ranking of the octagon's 8 points to the budget of 6 (rankContacts, 1.6 k of emitManifold's "
-                      "2.1 k in the profile below, after this round's cuts: the convex-cycle certificate taken while "
-                      "the points are gathered, lone leaders picked without a pass, gains kept between slots) alone "
-                      "costs half dBoxBox's whole call; it gives every prefix as the best set of its size and fixes "
-                      "the order the solver sees, so only constant factors can go without changing it. The clip and "
-                      "lift onto both faces (intersectSmallFeatures, 1.9 k) is the arithmetic of the "
-                      "Sutherland–Hodgman clip (distances to the clip edges, crossing tests); its points must stay "
-                      "bit for bit (the centroid rule's choice among equal-area triangles hangs on their last bits), "
-                      "so a rectangle-specific clip with other rounding would reorder sets. The growth's 15 axes "
-                      "(boxGrowth, 0.72 k), the box path's composition, the adapter (0.75 k with its write), "
-                      "refineNormal (0.41 k) and the features come on top: more than dBoxBox's 3.3 k without the "
-                      "ranking and the clip."),
-    "box_box_face_4": ("As face 8 (the same region, 1.9 k to clip and lift), with the ranking of 8 points to 4 "
-                      "(1.25 k) where dBoxBox's cullPoints is a cheaper angular pick."),
-    "box_box_edge_edge": ("The growth distance is 22 % of the call (0.71 k: its 15 axes, each facet now tested against "
-                         "the exit so far first, still cost about 40 % of dBoxBox's whole call), the composition of "
-                         "the stages around it (composeStages with the box hooks: B's pose in A's frame, the overlap "
-                         "along the growth normal) about 0.5 k, the adapter 0.56 k; the segment crossing and lift "
-                         "0.51 k, refineNormal's common perpendicular of the edges 0.31 k (three square roots and a "
-                         "support search pair) and feature selection 0.2 k come on top."),
-    "box_box_separated": "The general pipeline's early outs (bounding spheres, then the centre line as a separating "
-                         "axis, two boxes' overlap along it now in closed form with the support searches deciding "
-                         "only within 1e-12 of the size of the limit: 0.1 k) reproduced exactly; what is left is "
-                         "the pair's construction (B's pose in A's frame and centre, 0.3 k) and the adapter. A "
-                         "separating-axis early out over the 15 axes would be cheaper on these poses but could "
-                         "change which pairs get speculative contacts under a margin.",
-    "box_plane": ("Through the adapter 1.34 k instructions a call (callgrind), 3.3× dCollideBoxPlane's 402. The "
-                 "adapter's own work is about 620 (was 727: writeContacts now inlined, seven stores a contact, its "
-                 "finiteness test chosen once per manifold; one frame for the guard and the checks; the last box "
-                 "and plane slots compared by the bytes ODE gives): the depth order and write of four contacts "
-                 "about 185, the six ODE accessor calls 57, the harness's own call about 55, the pair's checks, "
-                 "slots and pose about 200. The core's part is about 720: the plane in the box's frame, the "
-                 "closed-form support and feature (165), the four corners lifted to their midway points and "
-                 "written as world points with the overflow check (517). The face is not ranked there: "
-                 "writeContacts orders by depth, so the adapter asks for the importance order only among equal "
-                 "depths (an exactly flat face, about 1.75 k, is still ranked). The midway points are the "
-                 "method's, which ODE does not compute."),
-    "convex_plane": "As box–plane (2.1 k through the adapter); for a hull the Gauss-map selection (selectFeature, about 450 instructions: 3 neighbour-edge and 9 face tests for a cube) "
-                    "replaces the box's closed form, and the hull's lookup and the check that the geom still holds "
-                    "it (its AABB's x extent; about 200 together) come on top.",
-    "hull8_libccd": "libccd's MPR returns one point. Of the full manifold's 9.2 k (core, callgrind, resting face, 8 "
-                    "points): the growth distance by enumerating A − B's facets (hullGrowth) 2.6 k, the clip "
-                    "(intersectFeatures) 2.1 k, the ranking of 8 points 1.5 k (of emitManifold's 1.9 k; 2.0 k of 2.4 k "
-                    "before this round's ranking cuts), the features' "
-                    "geometry 0.6 k, stage 1's support searches 0.3 k, feature selection 0.3 k (was 1.1 k: each body's "
-                    "face of largest ratio in the enumeration is proved the Gauss-map feature instead of searched, "
-                    "gauss_map.hpp faceIsSelected). What hullGrowth finds (the overlaps along the faces it evaluated "
-                    "and a bound of every other face's, its exit facet, B's placed vertices, each body's face) is "
-                    "carried into the overhang check, refineNormal, the depth certificate and the features, which no "
-                    "longer search again (the same manifolds: `core_tests \"hull carry*\"`). Off the resting face "
-                    "the overhang check no longer runs: hull_hull/8 6.7 k (was 8.3 k).",
-    "hull8_bullet_sat": "The goal here is the stretch 0.5×; issue 23's target of 1.0× is met. Bullet's SAT over a "
-                        "cube's 3 + 3 face and 9 edge directions plus its clipping does the work of our stages 1 and "
-                        "3 only; the ranking (about a quarter of the call) is ours alone, and the enumeration of "
-                        "A − B's facets (hullGrowth) is the largest part of the rest (profile below).",
-    "hull_growth": "Through the adapter each 4096-vertex call now includes ODE's AABB update of the re-posed geom "
-                   "(dxConvex::computeAABB, about 0.4 M instructions: a loop over every vertex, which a real step's "
-                   "broad phase pays for every collider alike, and which the adapter's dGeomSetConvex check reads); "
-                   "the core alone grows far less (Cost growth with hull size, the core's column). The "
-                   "ratio rose when the 8-vertex call got cheaper: the enumeration's carry into the later stages "
-                   "(hull_gauge.hpp) serves small hulls only. At 4096 vertices every support search climbs the "
-                   "vertex graph (34 % of the call) and the contact region spans a cap of many faces within the "
-                   "angular tolerance, each face clipped (intersect2d 11 %) and the points reduced to 8 (9 %).",
-    "brick_wall": "The box–box and box–plane pair costs above, over every touching pair; the broad phase and the "
-                  "near callback are the same for both colliders.",
+    "box_box_face_8": ("Per call (callgrind): the growth distance's 15 axes (boxGrowth and exitsBy, 0.92 k), "
+                      "refineNormal (0.41 k), the two features and supports (0.50 k), the composition around "
+                      "them (B's pose in A's frame, the overlap along the normal; 0.56 k) and the adapter (reading "
+                      "both geoms, the pair's order, the write; 0.86 k) come to 3.25 k: dBoxBox's whole call "
+                      "(3.3 k) before a point is clipped or ranked. On top: the clip and lift onto both faces "
+                      "(intersectSmallFeatures, 1.9 k) and the ranking of 8 points to 6 (rankContacts, 1.65 k of "
+                      "emitManifold's 2.1 k). Without any ranking the call would be 5.65 k, 1.7× dBoxBox: the cheaper "
+                      "4-point pick that issue 31 allows cannot reach the target, and the ranking also fixes the "
+                      "order the solver meets, which issue 35's columns showed decides collapses, so it was not "
+                      "traded away."),
+    "box_box_face_4": ("dBoxBox's call is 5.0 k here (its cullPoints, an angular pick of 4, is dearer than its octagon "
+                      "case). Ours is 6.7 k: 3.6 k without the clip (intersectSmallFeatures, 1.9 k) and the ranking of "
+                      "8 points to 4 (rankContacts, 1.27 k). This is the one box target within reach of issue 31's "
+                      "freedoms: it needs the clip and the ranking together under 1.4 k (3.2 k today), i.e. a clip "
+                      "specialised to rectangles and a cheaper 4-point pick, each judged by the solver benchmark over "
+                      "seeds; not done this round."),
+    "box_box_edge_edge": ("dBoxBox's whole call is 1.67 k. Ours: the growth distance's 15 axes (0.71 k), the "
+                         "composition around the stages (0.54 k) and the adapter (0.65 k) already make 1.9 k; the "
+                         "common perpendicular of the two edges (refineNormal with edgeEdgeNormal, 0.31 k), the "
+                         "segment crossing and lift (0.51 k), the features (0.30 k) and the early out (0.11 k) "
+                         "come on top."),
+    "box_box_separated": ("The core's part is 0.34 k (the bounding spheres, the centre line as a separating axis in "
+                         "closed form, 0.1 k; B's pose in A's frame and the pair's construction the rest). The adapter's "
+                         "part is about 0.5 k, more than dBoxBox's whole 474: eight ODE getter calls (class, position, "
+                         "rotation, lengths of each geom), the thread's box slots, the pair's fixed order "
+                         "(comesFirst), the settings and the pair cache's switch, the dispatch by kinds. Each is a few "
+                         "dozen instructions; the profile shows no single one worth a change of design."),
+    "box_plane": ("dCollideBoxPlane's whole call is 402 instructions. The adapter's part alone is about 0.7 k of "
+                 "our 1.44 k (callgrind): reading the box and the plane through six ODE calls, the thread's slots, the "
+                 "pair's checks and the depth-ordered write of four dContactGeoms (0.2 k). The core's part is 0.68 k: "
+                 "the plane in the box's frame, the closed-form support and feature (0.17 k), the four corners lifted "
+                 "to their midway points and written as world points with the overflow check (0.52 k). The face is "
+                 "not ranked (writeContacts orders by depth). The midway points are the method's; ODE writes the "
+                 "corners as they are."),
+    "convex_plane": ("As box–plane: dCollideConvexPlane's whole call is 704, our adapter's part alone about 0.8 k "
+                    "of 2.1 k (the hull's lookup and the check that the geom still holds it, knownHull, 0.15 k, "
+                    "come on top of the box's reading); in the core (1.29 k) the Gauss-map selection (selectFeature, "
+                    "0.45 k: 3 neighbour-edge and 9 face tests for a cube) replaces the box's closed form."),
+    "hull8_libccd": ("libccd's MPR returns one point in 6.7 k. Ours (10.4 k): the growth distance by enumerating "
+                    "A − B's facets (hullGrowth, 2.6 k of the stage's 3.1 k), the clip (intersectFeatures, 2.1 k) and "
+                    "the adapter (1.1 k, the hulls' lookup 0.3 k of it) already make 6.3 k; the ranking of 8 points "
+                    "(1.65 k of emitManifold's 2.1 k), the features' geometry (0.6 k) and their selection (0.36 k) "
+                    "come on top. Without any ranking the call would be 8.65 k, 1.28× libccd's one point."),
+    "hull8_bullet_sat": ("Issue 23's target of 1.0× is met; the stretch 0.5× would need 8.4 k. Bullet's SAT over a "
+                        "cube's 3 + 3 face and 9 edge directions plus its clipping does the work of our stages 1 and 3; "
+                        "the ranking (1.65 k) is ours alone, and without it the call would be 8.65 k (0.52×), so the "
+                        "stretch needs both a cheaper pick and a cheaper growth stage (hullGrowth, 2.6 k)."),
+    "hull_growth": ("Through the adapter each 4096-vertex call includes ODE's AABB update of the re-posed geom "
+                   "(dxConvex::computeAABB, a loop over every vertex, about 0.4 M instructions, which a real step's "
+                   "broad phase pays for every collider alike and which the adapter's dGeomSetConvex check reads); "
+                   "the core alone grows far less (Cost growth with hull size, the core's column). The 8-vertex call "
+                   "has the enumeration of A − B's facets (hull_gauge.hpp), which serves small hulls only. At 4096 "
+                   "vertices every support search climbs the vertex graph and the contact region spans a cap of many "
+                   "faces within the angular tolerance, each face clipped and the points reduced to 8 (profile below)."),
+    "brick_wall": ("The box–box and box–plane pair costs above, over every touching pair; the broad phase and the "
+                  "near callback are the same for both colliders."),
     "box_pile": "As the brick wall: the resting box–box pairs dominate.",
 }
 
@@ -380,7 +373,7 @@ def targets_section(pairs, instructions, scenes):
                  f"{num(o['collision_ms']):.2f} ms [{num(o.get('collision_ms_p25')):.2f}–{num(o.get('collision_ms_p75')):.2f}]")
         step = f"whole step {num(g['step_ms']):.2f} vs {num(o['step_ms']):.2f} ms"
         rows.append([label, "≤ 1", f"**{fmt(r)}**", times, step, verdict(r, 1.0), obstacle(target_id, r, 1.0)])
-    return table(["target (issue 11)", "goal", "measured ratio",
+    return table(["target", "goal", "measured ratio",
                   "time, gdcontact vs reference: median [min–max of the rounds; scenes: quartiles of the steps]",
                   "instructions per call, gdcontact vs reference; others", "verdict", "what stands in the way"], rows)
 
@@ -663,8 +656,11 @@ switched on only around each contender's cycled calls (the driver's loop, measur
 
 ## Targets
 
-Issue 11's targets: gdcontact through the ODE adapter on the cycled poses against ODE's native collider for the same pair
-(ratio of the medians of one run), with the instruction counts beside them; the scene targets compare the median
+Issue 31's targets (the growth target is issue 11's): gdcontact through the ODE adapter on the cycled poses against
+ODE's native collider for the same pair (ratio of the medians of one run), with the instruction counts beside them;
+"what stands in the way" is read off callgrind's per-function counts of the same calls (`bench/callgrind_counts.py
+--work DIR`, then `callgrind_annotate --inclusive=yes` on the contender's dump) and the profiles of
+[Where the time goes](#where-the-time-goes). The scene targets compare the median
 collision time per step after settling (`dSpaceCollide` with its near callback) with the same bodies under ODE's
 native colliders.
 
