@@ -68,8 +68,7 @@ PROFILE_CASES = {
 
 # ---- the targets (issue 31; the growth target is issue 11's) -------------------------------------------
 # What stands in the way of each target that a run misses, read off callgrind's per-function counts of the
-# same calls (`bench/callgrind_counts.py --work DIR`, then `callgrind_annotate --inclusive=yes` on the
-# contender's dump, divided by its calls) and the perf profiles below. Each says which parts the method
+# same cases (the page's Targets section gives the command) and the perf profiles below. Each says which parts the method
 # needs and what they cost alone against the reference's whole call. EDIT HERE after a full run; an empty
 # entry prints a placeholder. Shown only where the verdict is "missed".
 STANDS_IN_THE_WAY = {
@@ -84,7 +83,7 @@ STANDS_IN_THE_WAY = {
                       "order the solver meets, which issue 35's columns showed decides collapses, so it was not "
                       "traded away."),
     "box_box_face_4": ("dBoxBox's call is 5.0 k here (its cullPoints, an angular pick of 4, is dearer than its octagon "
-                      "case). Ours is 6.7 k: 3.6 k without the clip (intersectSmallFeatures, 1.9 k) and the ranking of "
+                      "case). Ours is 6.8 k: 3.6 k without the clip (intersectSmallFeatures, 1.9 k) and the ranking of "
                       "8 points to 4 (rankContacts, 1.27 k). This is the one box target within reach of issue 31's "
                       "freedoms: it needs the clip and the ranking together under 1.4 k (3.2 k today), i.e. a clip "
                       "specialised to rectangles and a cheaper 4-point pick, each judged by the solver benchmark over "
@@ -658,8 +657,10 @@ switched on only around each contender's cycled calls (the driver's loop, measur
 
 Issue 31's targets (the growth target is issue 11's): gdcontact through the ODE adapter on the cycled poses against
 ODE's native collider for the same pair (ratio of the medians of one run), with the instruction counts beside them;
-"what stands in the way" is read off callgrind's per-function counts of the same calls (`bench/callgrind_counts.py
---work DIR`, then `callgrind_annotate --inclusive=yes` on the contender's dump) and the profiles of
+"what stands in the way" is read off callgrind's per-function counts of the same cases (`python3
+bench/callgrind_counts.py --driver build-bench/bench/bench_instructions --out X.csv --work DIR box_box box_plane
+convex_plane`, the driver's default cycles, whose totals are within 1 % of the table's; then `callgrind_annotate
+--inclusive=yes` on the contender's dump in DIR, divided by its calls) and the profiles of
 [Where the time goes](#where-the-time-goes). The scene targets compare the median
 collision time per step after settling (`dSpaceCollide` with its near callback) with the same bodies under ODE's
 native colliders.
