@@ -241,6 +241,17 @@ void buildPlates(BenchScene& s, double aspect) {
         s.box(half, 1000.0, at(0, 0, halfThickness + i * (2 * halfThickness + gap) + gap), (i + 1) * gap);
 }
 
+/// The robustness test's thin plates (tests/robustness/world_test.cpp, "thin plates stacked"):
+/// five 1 m × 1 m × 1 cm plates of 1 kg (1:100), each turned 0.1 rad about the vertical and
+/// shifted 1 cm from the one below, so that every pair meets in an octagon of 8 corners — more
+/// than the default budget keeps, which the aligned plates above never reach.
+void buildTurnedPlates(BenchScene& s) {
+    s.ground();
+    const Vec3 half(0.5, 0.5, 0.005);
+    for (int i = 0; i < 5; ++i)
+        s.box(half, 1.0 / (8 * half.prod()), at(0.01 * i, -0.01 * i, half.z() * (2 * i + 1), 0.1 * i), 0.0);
+}
+
 void buildHulls(BenchScene& s) {
     // Hexagonal prisms and irregular slabs (random polygons top and bottom, a random belt), all
     // with flat tops and bottoms, alternately; shapes from a fixed generator (the seed only jitters).
@@ -463,6 +474,7 @@ BenchScene::Builder builderFor(const std::string& name) {
     if (name == "wall") return buildWall;
     if (name == "plates20") return [](BenchScene& s) { buildPlates(s, 20.0); };
     if (name == "plates50") return [](BenchScene& s) { buildPlates(s, 50.0); };
+    if (name == "plates100") return buildTurnedPlates;
     if (name == "hulls") return buildHulls;
     if (name == "composites") return buildComposites;
     if (name == "pile1000") return buildPile;
@@ -864,6 +876,8 @@ const std::vector<SceneSpec>& sceneSpecs() {
          false, "one island of 63 bricks: a dWorldStep of the wall took 1.1 s (issue 22)", 50},
         {"plates20", "10 plates 50×50×2.5 cm (1:20) stacked", 3.0, true, false, true, "", 50},
         {"plates50", "10 plates 50×50×1 cm (1:50) stacked", 3.0, true, false, true, "", 50},
+        {"plates100", "5 plates 1 m × 1 m × 1 cm (1:100), 1 kg, each turned 0.1 rad and shifted 1 cm on the one below (octagons of 8 corners)",
+         3.0, true, false, true, "", 50},
         {"hulls", "8 hulls stacked: hexagonal prisms and irregular slabs (30 cm, 10 cm high)", 3.0, false, false, true, "", 50},
         {"composites", "12 composites of 3–5 boxes (L, T, table, cross) dropped into a heap", 3.0, true, true, true, "", 50},
         {"pile1000", "1000 cubes of 10 cm dropped from a staggered 10×10×10 grid into a pile", 1.5, true, true, false,

@@ -13,6 +13,7 @@
 // that their times hold nothing but collision and solver. Requires dInitODE2() first.
 #pragma once
 
+#include <gdcontact/ode.hpp>
 #include <gdcontact/settings.hpp>
 
 #include <ode/ode.h>
@@ -57,7 +58,7 @@ enum class RowOrder {
 struct Contender {
     std::string name;  ///< "gdc", "ode-box", "ode-convex", or e.g. "gdc:maxContacts=4"; "+order=NAME" appended
     ColliderKind kind = ColliderKind::Gdcontact;
-    gdc::Settings settings;  ///< gdcontact's settings (Gdcontact only)
+    gdc::Settings settings = gdc::ode::defaultSettings();  ///< gdcontact's settings (Gdcontact only): "gdc" is install()'s
     RowOrder order = RowOrder::AsIs;  ///< "+order=as-is|reversed|deepest-first|deepest-last|heavy-deepest-first[:RATIO]"
     double massRatio = 4.0;           ///< HeavyDeepestFirst's threshold
 };

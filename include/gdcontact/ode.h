@@ -83,7 +83,8 @@ typedef struct gdcSettings {
     int rimPointsPerTurn;
 } gdcSettings;
 
-/* Fills *settings with gdcontact's defaults (those of gdc::Settings). Does nothing for NULL. */
+/* Fills *settings with gdcontact's defaults for the ODE it is built against (gdc::ode::defaultSettings:
+ * those of gdc::Settings, maxContacts 8 against a single-precision ODE). Does nothing for NULL. */
 GDCONTACT_C_API void gdcDefaultSettings(gdcSettings* settings) GDCONTACT_C_NOEXCEPT;
 
 /* gdc::ode::install: routes ODE's box–box, box–convex, convex–convex, box–plane and convex–plane

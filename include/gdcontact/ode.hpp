@@ -20,6 +20,16 @@
 
 namespace gdc::ode {
 
+/// gdcontact's defaults for the ODE this library is built against: gdc::Settings' own, except
+/// maxContacts 8 (a box–box octagon kept whole) against a single-precision ODE. There, with 6
+/// points a face pair, dWorldStep's Dantzig LCP stopped on ties ("LCP internal error, s <= 0": a
+/// row that carries no force, left exactly on its bound, asked to move) in stacks of turned plates
+/// far more often than with dBox's points or 8 of gdcontact's, and the stacks tilted;
+/// dWorldQuickStep fails no more seeds with 8 (docs/install.md, "Single precision: 8 points a
+/// face"). install(), BodyPairContacts, spaceCollide before any install() and the C API's
+/// gdcDefaultSettings start from these; a program that builds its own Settings should too.
+GDCONTACT_API Settings defaultSettings();
+
 /// Routes ODE's box–box, box–convex, convex–convex, box–plane and convex–plane pairs, and its
 /// curved pairs that get one point where a region touches — cylinder–box, cylinder–convex,
 /// cylinder–plane, cylinder–cylinder, capsule–box, capsule–convex, capsule–cylinder and
@@ -30,7 +40,7 @@ namespace gdc::ode {
 /// naming the field and its bounds); called while ODE is not initialised it throws InvalidInput
 /// saying to call dInitODE2() first. Contacts a dCollide call returns are at most
 /// min(settings.maxContacts, flags & 0xffff).
-GDCONTACT_API void install(const Settings& settings = {});
+GDCONTACT_API void install(const Settings& settings = defaultSettings());
 
 /// Whether install() routes geoms of these two ODE classes (dBoxClass, dCylinderClass, …; either
 /// order) to gdcontact — the pairs collide() takes. A program calling collide() itself from a near
@@ -41,7 +51,7 @@ GDCONTACT_API bool handles(int class1, int class2);
 /// contact convention (normal from o2 into o1, unit; depth ≥ 0; g1/g2 as received;
 /// side1 = side2 = -1; at most flags & 0xffff contacts at stride `skip`). Handles the pairs
 /// install() routes, in any order. A curved geom of a size ODE accepts and the core does not (a
-/// zero radius, a zero-length cylinder) is collided as the thinnest shape the core takes. Uses the settings of the last install() (the defaults before
+/// zero radius, a zero-length cylinder) is collided as the thinnest shape the core takes. Uses the settings of the last install() (defaultSettings() before
 /// any). A dConvex gdcontact does not know (made by plain dCreateConvex, or changed by
 /// dGeomSetConvex) is collided by ODE's own convex collider, with one dMessage (docs/ode.md).
 /// Never throws: a failure inside gdcontact is reported through dMessage and yields 0 contacts;
@@ -171,7 +181,7 @@ GDCONTACT_API int reduceBodyPair(dBodyID b1, dBodyID b2, dContactGeom* contacts,
 class GDCONTACT_API BodyPairContacts {
 public:
     /// Throws InvalidInput for settings gdc::validate refuses.
-    explicit BodyPairContacts(const Settings& settings = {});
+    explicit BodyPairContacts(const Settings& settings = defaultSettings());
     /// One geom pair's contacts (`count` at `contacts`, stride sizeof(dContactGeom)), as dCollide
     /// gave them for (o1, o2). Throws InvalidInput for count < 0 or null contacts with count > 0.
     void add(dGeomID o1, dGeomID o2, const dContactGeom* contacts, int count);

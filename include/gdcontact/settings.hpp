@@ -105,7 +105,10 @@ struct Settings {
     /// benchmark over seeds; 8 keeps a box–box octagon whole; 4 is what Bullet, PhysX and Box3D
     /// keep and suffices under dWorldStep; 1 keeps the deepest point, 2 a segment, 3 a triangle.
     /// Why 6: docs/algorithm.md, "The budget over every scene: why 6"; the tables in
-    /// docs/benchmarks.md, "The budget over every scene".
+    /// docs/benchmarks.md, "The budget over every scene". The ODE adapter's defaults
+    /// (gdc::ode::defaultSettings) make it 8 against a single-precision ODE, whose Dantzig LCP
+    /// meets fewer ties with a face pair's octagon whole (docs/install.md, "Single precision: 8
+    /// points a face").
     /// Bounds [1, 16]: 16 is the size of a Manifold (kMaxManifoldPoints).
     int maxContacts = 6;
 

@@ -16,6 +16,7 @@
 
 #include "geometry.hpp"
 
+#include <gdcontact/ode.hpp>
 #include <gdcontact/polytope.hpp>
 #include <gdcontact/settings.hpp>
 #include <gdcontact/types.hpp>
@@ -282,7 +283,7 @@ private:
     std::string name_;
     SceneOptions options_;
     SolverSettings solver_;
-    gdc::Settings contactSettings_;
+    gdc::Settings contactSettings_ = gdc::ode::defaultSettings();  // as install() without settings
     Method method_;
     dWorldID world_ = nullptr;
     dSpaceID space_ = nullptr;

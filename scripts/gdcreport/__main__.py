@@ -9,6 +9,7 @@ for a command's arguments.
   big           the "Big worlds" section of docs/benchmarks.md (scripts/bench --big)
   budget        the contact budget tables of docs/algorithm.md from solver-seeds runs (stdout)
   order         a contact order against the default and ODE's options, paired by seed (stdout)
+  lcp-ties      dWorldStep's "LCP internal error"s per contender over seeds (stdout)
   mesh-cost     docs/images/mesh_cost.png and docs/meshes.md's cost table from bench_mesh_cost --csv
 """
 import importlib
@@ -16,7 +17,7 @@ import sys
 
 # command → module of this package; each module's main(argv) reads its own arguments.
 COMMANDS = {"scenes": "scenes", "check": "check", "solver-seeds": "solver_seeds", "bench": "bench", "big": "big",
-            "budget": "budget", "order": "order", "mesh-cost": "mesh_cost"}
+            "budget": "budget", "order": "order", "lcp-ties": "lcp_ties", "mesh-cost": "mesh_cost"}
 
 
 def main(argv):

@@ -21,7 +21,7 @@ from collections import defaultdict
 
 from gdcreport.data import read_csv
 from gdcreport.steppers import stepper_label, steppers_in
-from gdcreport.stats import sign_test
+from gdcreport.stats import paired_by_seed, sign_test
 
 ODE = ["ode-box", "ode-convex"]
 
@@ -44,10 +44,7 @@ def load(dirs):
 
 def paired(a, b, criterion):
     """(a only, b only, p) over the seeds both ran; criterion 0: collapsed, 1: failed."""
-    common = set(a) & set(b)
-    only_a = sum(a[s][criterion] and not b[s][criterion] for s in common)
-    only_b = sum(b[s][criterion] and not a[s][criterion] for s in common)
-    return only_a, only_b, sign_test(only_a, only_b)
+    return paired_by_seed(a, b, lambda result: result[criterion])
 
 
 def main(argv=None):

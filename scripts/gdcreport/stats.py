@@ -25,6 +25,15 @@ def wilson(k, n, z=1.959964):
     return max(0.0, c - h), min(1.0, c + h)
 
 
+def paired_by_seed(a, b, happened):
+    """a, b: seed -> one contender's result. Over the seeds both ran: (the seeds where `happened`
+    holds for a's result and not b's, the other way round, the sign test's p of the two)."""
+    common = set(a) & set(b)
+    only_a = sum(happened(a[s]) and not happened(b[s]) for s in common)
+    only_b = sum(happened(b[s]) and not happened(a[s]) for s in common)
+    return only_a, only_b, sign_test(only_a, only_b)
+
+
 def sign_test(a, b):
     """The exact two-sided sign (binomial, p = 1/2; McNemar exact) test's p of a against b
     discordant pairs: seeds where one side fails (or sleeps later) and the other does not. 1 when

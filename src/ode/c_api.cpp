@@ -87,7 +87,7 @@ extern "C" {
 
 void gdcDefaultSettings(gdcSettings* settings) noexcept {
     if (!settings) return;
-    const gdc::Settings defaults;
+    const gdc::Settings defaults = gdc::ode::defaultSettings();
     settings->rayCastTolerance = defaults.rayCastTolerance;
     settings->maxRayCastIterations = defaults.maxRayCastIterations;
     settings->angularTolerance = defaults.angularTolerance;
@@ -192,7 +192,7 @@ int gdcReduceBodyPair(dBodyID b1, dBodyID b2, dContactGeom* contacts, int count,
     const int code = guarded([&] {
         // gdc::ode::reduceBodyPair validates the settings and every contact before it moves any.
         kept = gdc::ode::reduceBodyPair(b1, b2, contacts, count, skip,
-                                        settings ? toSettings(*settings, "gdcReduceBodyPair") : gdc::Settings{});
+                                        settings ? toSettings(*settings, "gdcReduceBodyPair") : gdc::ode::defaultSettings());
     });
     return code == GDC_OK ? kept : -code;
 }

@@ -12,10 +12,10 @@
 #include <type_traits>
 #include <vector>
 
-TEST_CASE("gdcDefaultSettings gives gdc::Settings' defaults, field by field") {
+TEST_CASE("gdcDefaultSettings gives gdc::ode::defaultSettings(), field by field") {
     gdcSettings c;
     gdcDefaultSettings(&c);
-    const gdc::Settings cpp;
+    const gdc::Settings cpp = gdc::ode::defaultSettings();
     CHECK(c.rayCastTolerance == cpp.rayCastTolerance);
     CHECK(c.maxRayCastIterations == cpp.maxRayCastIterations);
     CHECK(c.angularTolerance == cpp.angularTolerance);
@@ -31,6 +31,7 @@ TEST_CASE("gdcDefaultSettings gives gdc::Settings' defaults, field by field") {
     CHECK(c.maxBodyPairContacts == cpp.maxBodyPairContacts);
     CHECK(c.bodyPairNormalTolerance == cpp.bodyPairNormalTolerance);
     CHECK(c.loadedDepthFraction == cpp.loadedDepthFraction);
+    CHECK(c.rimPointsPerTurn == cpp.rimPointsPerTurn);
 }
 
 TEST_CASE("gdcSettings' contact order values are gdc::ContactOrder's") {

@@ -148,6 +148,36 @@ bool hullCovers(const std::vector<Vec3>& outer, const std::vector<Vec3>& inner, 
 
 }  // namespace
 
+TEST_CASE("install() without settings keeps defaultSettings()' budget: 6 of an octagon in double precision, 8 in single",
+          "[ode][box-box][settings]") {
+    // A unit cube turned 0.1 rad on another, 1 mm into it: the face pair meets in an octagon.
+    // A single-precision ODE's Dantzig LCP meets fewer ties with the octagon whole
+    // (docs/install.md, "Single precision: 8 points a face").
+    const int expected = kOdeIsDouble ? 6 : 8;
+    CHECK(gdc::ode::defaultSettings().maxContacts == expected);
+    Settings others = gdc::ode::defaultSettings();  // every other field is gdc::Settings' own
+    others.maxContacts = Settings{}.maxContacts;
+    CHECK(others == Settings{});
+    for (bool installed : {true, false}) {
+        INFO((installed ? "install()" : "collide() before any install()"));
+        OdeSession session(false);
+        if (installed) gdc::ode::install();
+        dGeomID lower = dCreateBox(nullptr, 1, 1, 1), upper = dCreateBox(nullptr, 1, 1, 1);
+        dGeomSetPosition(lower, 0, 0, -0.5);
+        dGeomSetPosition(upper, 0, 0, 0.499);
+        dMatrix3 turn;
+        dRFromAxisAndAngle(turn, 0, 0, 1, 0.1);
+        dGeomSetRotation(upper, turn);
+        std::array<dContactGeom, 16> contacts{};
+        const int count = installed ? dCollide(upper, lower, 16, contacts.data(), sizeof(dContactGeom))
+                                    : gdc::ode::collide(upper, lower, 16, contacts.data(), sizeof(dContactGeom));
+        CHECK(count == expected);
+        for (int i = 0; i < count; ++i) CHECK(contacts[static_cast<std::size_t>(i)].depth > 0);
+        dGeomDestroy(lower);
+        dGeomDestroy(upper);
+    }
+}
+
 TEST_CASE("on face contacts gdcontact's normal is dBoxBox's and its points cover dBoxBox's", "[ode][box-box]") {
     // dBoxBox returns every point of the face pair's polygon (up to 8): a budget of 8 keeps them
     // all, so our hull must cover its points (the default budget, 6, may drop two).

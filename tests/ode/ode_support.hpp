@@ -17,7 +17,7 @@ namespace gdc::ode::test {
 /// dInitODE2 … dCloseODE around one test, so that every test starts from ODE's own collider
 /// table (dCloseODE forgets install()).
 struct OdeSession {
-    explicit OdeSession(bool installGdcontact = true, const Settings& settings = {}) {
+    explicit OdeSession(bool installGdcontact = true, const Settings& settings = gdc::ode::defaultSettings()) {
         dInitODE2(0);
         if (installGdcontact) install(settings);
     }

@@ -145,18 +145,23 @@ class Commands(unittest.TestCase):
     def test_an_unknown_command_fails_and_lists_the_commands(self):
         result = self.run_command("no-such-report")
         self.assertEqual(result.returncode, 2)
-        for command in ("scenes", "check", "solver-seeds", "bench", "big", "budget", "mesh-cost"):
+        for command in ("scenes", "check", "solver-seeds", "bench", "big", "budget", "lcp-ties", "mesh-cost"):
             self.assertIn(command, result.stderr)
 
-    def test_budget_pairs_seeds_with_the_sign_test(self):
-        directory = tempfile.mkdtemp(prefix="gdcreport_budget_")
+    def runs_directory(self, prefix, header, lines):
+        """A temporary results directory whose solver_seeds_runs.csv has `header` and `lines`."""
+        directory = tempfile.mkdtemp(prefix=prefix)
         self.addCleanup(shutil.rmtree, directory, ignore_errors=True)
-        # Made-up runs of one scene: the variant fails seeds 0-5, the default none of them.
         with open(os.path.join(directory, "solver_seeds_runs.csv"), "w") as f:
-            f.write("scene,stepper,contender,seed,failed,contacts_per_step,sleep_time,drift\n")
-            for seed in range(10):
-                f.write(f"pile,quick20,gdc,{seed},0,8,1.5,0.001\n")
-                f.write(f"pile,quick20,gdc:maxContacts=4,{seed},{int(seed < 6)},4,-1,0.002\n")
+            f.write(header + "\n" + "".join(line + "\n" for line in lines))
+        return directory
+
+    def test_budget_pairs_seeds_with_the_sign_test(self):
+        # Made-up runs of one scene: the variant fails seeds 0-5, the default none of them.
+        directory = self.runs_directory(
+            "gdcreport_budget_", "scene,stepper,contender,seed,failed,contacts_per_step,sleep_time,drift",
+            [line for seed in range(10) for line in (f"pile,quick20,gdc,{seed},0,8,1.5,0.001",
+                                                     f"pile,quick20,gdc:maxContacts=4,{seed},{int(seed < 6)},4,-1,0.002")])
         with open(os.path.join(directory, "solver_seeds_summary.csv"), "w") as f:
             f.write("scene,stepper,contender,best_ode,cost_whole_ms\n")
             f.write("pile,quick20,gdc,,2.0\npile,quick20,gdc:maxContacts=4,,1.0\n")
@@ -166,6 +171,21 @@ class Commands(unittest.TestCase):
         self.assertEqual(len(rows), 1)  # the paired row: 6 seeds only the variant fails, none the other
         self.assertEqual(rows[0].split("|")[5:9], [" 10 ", " 6 ", " 0 ", f" {stats.sign_test(6, 0):.2g} "])
         self.assertIn("6/10 [", result.stdout)
+
+    def test_lcp_ties_counts_seeds_pairs_them_and_totals_the_rows_all_ran(self):
+        # Made-up runs: in "plates", A meets ties in seeds 0-4 (two each), B in seed 9 only;
+        # "hulls" has no B, so the totals leave it out.
+        directory = self.runs_directory(
+            "gdcreport_lcp_ties_", "scene,stepper,contender,seed,failed,lcp_errors",
+            [line for seed in range(10) for line in (f"plates,world,A,{seed},0,{2 if seed < 5 else 0}",
+                                                     f"plates,world,B,{seed},{int(seed == 9)},{int(seed == 9)}",
+                                                     f"hulls,world,A,{seed},0,1")])
+        result = self.run_command("lcp-ties", directory, "--pair", "A,B")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn(f"| plates | dWorldStep | 5 of 10 (10) · 0 | 1 of 10 (1) · 1 | 5 / 1 ({stats.sign_test(5, 1):.2g}) |",
+                      result.stdout)
+        self.assertIn("| hulls | dWorldStep | 10 of 10 (10) · 0 | – | – |", result.stdout)
+        self.assertIn("| the rows all ran | | 5 of 10 | 1 of 10 | |", result.stdout)
 
     def test_mesh_cost_plots_and_tabulates_every_row(self):
         directory = tempfile.mkdtemp(prefix="gdcreport_mesh_cost_")

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 using namespace gdc;
@@ -72,12 +73,22 @@ void requireNoWorseThanReference(const std::string& scene, const std::vector<Bod
 // internal error, s <= 0") with any collider's contacts. There the standard is ODE's own dBox
 // colliders in the same ODE, the same scene under dWorldStep: gdcontact stands and keeps its order
 // wherever they do, and each measure stays within its double-precision limit or, where dBox's own
-// exceeds that, within 1.5 times dBox's.
+// exceeds that, within 1.5 times dBox's; a length limit is never below the rounding of the
+// positions themselves (floatRoundingOf: 1 mm cubes stacked 1 cm high round to 0.9 nm, a
+// millionth of their size is 1 nm).
 constexpr double kAnyLength = 1e300, kAnyAngle = 4.0;  // a measure a scene does not limit
 
 struct StepLimits {
     double drift, sag, tilt, worstNormalAngle;
 };
+
+// Four float spacings at the scene's largest coordinate: a single-precision ODE stores every
+// position rounded to that spacing, so it bounds how still a body can be measured to stay.
+double floatRoundingOf(const std::vector<BodySpec>& specs) {
+    double largest = 0;
+    for (const BodySpec& body : specs) largest = std::max(largest, body.pose.position.cwiseAbs().maxCoeff() + body.halfExtents.norm());
+    return 4.0 * largest * std::numeric_limits<float>::epsilon();
+}
 
 void checkStep(const std::string& scene, const WorldResult& exact, const std::vector<BodySpec>& specs,
                const WorldOptions& options, const StepLimits& limits) {
@@ -89,8 +100,8 @@ void checkStep(const std::string& scene, const WorldResult& exact, const std::ve
         CHECK((exact.standing || !reference.standing));
         CHECK((exact.ordered || !reference.ordered));
         if (!reference.standing) return;  // ODE's own stack falls in float: nothing to hold gdcontact to
-        bound.drift = std::max(limits.drift, 1.5 * reference.drift);
-        bound.sag = std::max(limits.sag, 1.5 * reference.sag);
+        bound.drift = std::max({limits.drift, 1.5 * reference.drift, floatRoundingOf(specs)});
+        bound.sag = std::max({limits.sag, 1.5 * reference.sag, floatRoundingOf(specs)});
         bound.tilt = std::max(limits.tilt, 1.5 * reference.tilt);
         bound.worstNormalAngle = std::max(limits.worstNormalAngle, 1.5 * reference.worstNormalAngle);
     } else {
@@ -103,11 +114,13 @@ void checkStep(const std::string& scene, const WorldResult& exact, const std::ve
     CHECK(exact.worstNormalAngle <= bound.worstNormalAngle);
 }
 
-std::vector<BodySpec> thinPlates() {  // five 1 m × 1 m × 1 cm plates, each turned and shifted
+// Five 1 m × 1 m × 1 cm plates, each turned by `turn` (rad) and shifted by `shift` (m) along x and
+// −y on the one below: every pair meets in an octagon.
+std::vector<BodySpec> thinPlates(double turn = 0.1, double shift = 0.01) {
     std::vector<BodySpec> plates;
     for (int i = 0; i < 5; ++i)
         plates.push_back({Vec3(0.5, 0.5, 0.005), 1.0,
-                          Pose{rotationAbout(Vec3::UnitZ(), 0.1 * i), Vec3(0.01 * i, -0.01 * i, 0.005 + i * 0.0099999)},
+                          Pose{rotationAbout(Vec3::UnitZ(), turn * i), Vec3(shift * i, -shift * i, 0.005 + i * 0.0099999)},
                           i - 1});
     return plates;
 }
@@ -132,11 +145,8 @@ TEST_CASE("world, scale: 10-stacks of 1 mm and 1 km cubes (gravity scaled) stand
         const WorldResult exact = runWorld(cubeStack(scale), Collider::Gdcontact, Solver::Step, options);
         const std::string scene = "10-stack of " + std::string(scale < 1 ? "1 mm" : "1 km") + " cubes";
         report(scene, exactFigures(exact));
-        CHECK(exact.standing);
-        CHECK(exact.ordered);
-        CHECK(exact.drift <= 1e-6 * scale);  // ODE's dBox stack: ~2.4e-8 of the size
-        CHECK(exact.sag <= 1e-6 * scale);
-        CHECK(exact.tilt <= 1e-4);
+        // ODE's dBox stack (double precision): drift ~2.4e-8 of the size.
+        checkStep(scene, exact, cubeStack(scale), options, {1e-6 * scale, 1e-6 * scale, 1e-4, kAnyAngle});
         requireNoWorseThanReference(scene, cubeStack(scale), options, scale);
     }
 }
@@ -148,7 +158,11 @@ TEST_CASE("world, far from the origin: a 10-stack 1e5 m out stands", "[robustnes
     const WorldResult exact = runWorld(cubeStack(1.0, origin), Collider::Gdcontact, Solver::Step, options);
     report("10-stack 1e5 m from the origin", exactFigures(exact));
     checkStep("10-stack 1e5 m from the origin", exact, cubeStack(1.0, origin), options, {1e-6, 1e-6, 1e-4, kAnyAngle});
-    requireNoWorseThanReference("10-stack 1e5 m from the origin", cubeStack(1.0, origin), options, 1.0);
+    // A single-precision ODE rounds every position out here to 8 mm: under QuickStep the stack's
+    // twist scatters by 2x from seed to seed with either collider (3 seeds: gdcontact 0.13 rad
+    // against dBox's 0.072; 20 seeds: 0.077 against 0.084), hence 20 seeds there.
+    requireNoWorseThanReference("10-stack 1e5 m from the origin", cubeStack(1.0, origin), options, 1.0,
+                                kOdeIsDouble ? 3 : 20);
 }
 
 TEST_CASE("world, thin plates stacked and needles on a plate rest flat, with vertical normals",
@@ -171,6 +185,38 @@ TEST_CASE("world, thin plates stacked and needles on a plate rest flat, with ver
         CHECK(quick.worstNormalAngle <= 5e-3);
         requireNoWorseThanReference(name, specs, WorldOptions{}, 1.0);
     }
+}
+
+// One start of a resting stack is one sample of how ODE's Dantzig LCP meets its ties ("LCP internal
+// error, s <= 0": a row that carries no force, left exactly on its bound, then asked to move; the
+// solve stops there and the rows after it get no force for that step). Whether a tie comes, and
+// what it costs the stack, turns on roundoff, for dBox's contacts as for gdcontact's: the thin
+// plates again over 15 turns and shifts, each held to the dWorldStep limits of the case above.
+// gdcontact's plates stay flat in every start where dBox's do (docs/install.md, "Single
+// precision: 8 points a face": with 6 points a face, a single-precision ODE's stacks tilted in 9
+// of these 15 starts, dBox's in none).
+TEST_CASE("world, thin plates over 15 turns and shifts under dWorldStep: flat wherever dBox's are",
+          "[robustness][world][thin]") {
+    const auto flat = [](const WorldResult& r) {
+        return r.standing && r.ordered && r.drift <= 1e-6 && r.tilt <= 1e-4 && r.worstNormalAngle <= 1e-4;
+    };
+    int starts = 0, oursFlat = 0, dBoxFlat = 0;
+    for (double turn : {0.05, 0.1, 0.15, 0.2, 0.3})
+        for (double shift : {0.01, 0.015, 0.02}) {
+            const std::vector<BodySpec> specs = thinPlates(turn, shift);
+            const WorldResult ours = runWorld(specs, Collider::Gdcontact, Solver::Step);
+            const WorldResult dBox = runWorld(specs, Collider::OdeBoxes, Solver::Step);
+            ++starts;
+            oursFlat += flat(ours);
+            dBoxFlat += flat(dBox);
+            INFO("turn " << turn << " rad, shift " << shift << " m: gdcontact " << exactFigures(ours) << "; dBox "
+                         << exactFigures(dBox));
+            CHECK((flat(ours) || !flat(dBox)));
+        }
+    char text[160];
+    std::snprintf(text, sizeof text, "dWorldStep, %d starts: flat in %d with gdcontact, %d with dBox", starts, oursFlat,
+                  dBoxFlat);
+    report("thin plates, 15 turns and shifts", text);
 }
 
 TEST_CASE("world, mass ratio 100:1: a heavy cube on a light one holds", "[robustness][world][mass]") {
