@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <vector>
 
 namespace gdc::robustness {
@@ -90,13 +91,24 @@ inline double tiltOf(const Mat3& rotation) {
 
 }  // namespace detail
 
+/// The settings runWorld installs: gdc::ode::defaultSettings(), its maxContacts replaced by
+/// GDCONTACT_ROBUSTNESS_MAX_CONTACTS where that is set (install() refuses a value outside 1..16),
+/// to see what another budget does to a world (docs/install.md, "Single precision: 8 points a
+/// face"); the tests' limits are for the defaults.
+inline gdc::Settings worldSettings() {
+    gdc::Settings settings = gdc::ode::defaultSettings();
+    if (const char* text = std::getenv("GDCONTACT_ROBUSTNESS_MAX_CONTACTS"); text && *text)
+        settings.maxContacts = static_cast<int>(std::strtol(text, nullptr, 10));
+    return settings;
+}
+
 /// Runs the bodies (each a box of the given half extents and mass at its start pose) on a ground
 /// plane in a fresh ODE session (dInitODE2 … dCloseODE): ERP 0.2, CFM 1e-5, μ 0.8 (friction
 /// pyramid), gravity −z.
 inline WorldResult runWorld(const std::vector<BodySpec>& specs, Collider collider, Solver solver,
                             const WorldOptions& options = {}) {
     dInitODE2(0);
-    if (collider == Collider::Gdcontact) gdc::ode::install();
+    if (collider == Collider::Gdcontact) gdc::ode::install(worldSettings());
     dRandSetSeed(options.randomSeed);
     detail::WorldState state{dWorldCreate(), dJointGroupCreate(0), options.contactsPerPair};
     dWorldSetGravity(state.world, 0, 0, -options.gravity);
